@@ -1,0 +1,18 @@
+#pragma once
+
+#include "controllers/signals/signal.h"
+
+namespace tcpmsim {
+
+class ConstantSignal final : public Signal {
+ public:
+  explicit ConstantSignal(double value) : value_(value) {}
+  double value(double) const override { return value_; }
+  SignalDescription describe() const override;
+  std::pair<double, double> range(double, double) const override { return {value_, value_}; }
+
+ private:
+  double value_;
+};
+
+}  // namespace tcpmsim

@@ -1,0 +1,53 @@
+#pragma once
+
+#include "sim/config/config_node.h"
+
+namespace tcpmsim {
+
+// Fitted inductance of a TCPM's heater coil (thesis (6.3); (7.3) with lambda_x for l0):
+//     L(x, T) = lambda_l / (x + lambda_x) + lambda_T (T - T_ref) + lambda_0.
+// The thesis uses T in degC, i.e. T_ref = 273.15 K. With `measure` units the law gives the
+// Muscle Drive's inductance measure L* (decay time, proportional to inductance) instead of
+// henries: lambda_l in m, lambda_0 dimensionless.
+struct InductanceLaw {
+  double lambda_l = 0.0;
+  double lambda_x = 0.0;  // [m]
+  double lambda_T = 0.0;  // per K
+  double lambda_0 = 0.0;
+  double reference_temperature = 273.15;  // [K]
+  bool is_measure = false;                // L* (dimensionless) rather than H
+
+  double operator()(double deflection, double temperature) const;
+  // Inverse at a known temperature; at lambda_T = 0 this is (7.4).
+  double deflection(double inductance, double temperature) const;
+  static InductanceLaw from_config(const ConfigNode& node);
+};
+
+// Heater resistance (6.5):  R(x, T) = rho_x x + rho_T (T - T_ref) + rho_0.
+// The physical form (6.4), R = R0 (1 + kappa (T - T0)), is rho_T = R0 kappa, rho_0 = R0,
+// T_ref = T0, with rho_x the strain sensitivity (0 if unknown).
+struct ResistanceLaw {
+  double rho_x = 0.0;                     // [ohm/m]
+  double rho_T = 0.0;                     // [ohm/K]
+  double rho_0 = 0.0;                     // [ohm]
+  double reference_temperature = 273.15;  // [K]
+
+  double operator()(double deflection, double temperature) const;
+  static ResistanceLaw thermal(double resistance, double temperature_coefficient,
+                               double reference_temperature, double strain_coefficient = 0.0);
+  // A scalar is a constant resistance (constantan); a mapping has form linear (6.5) or
+  // thermal (6.4).
+  static ResistanceLaw from_config(const ConfigNode& node);
+};
+
+// Static force law (6.9): F = phi_x x + phi_T (T - T_ref) + phi_0.
+struct StaticForceLaw {
+  double phi_x = 0.0;                     // [N/m]
+  double phi_T = 0.0;                     // [N/K]
+  double phi_0 = 0.0;                     // [N]
+  double reference_temperature = 273.15;  // [K]
+
+  double operator()(double deflection, double temperature) const;
+};
+
+}  // namespace tcpmsim

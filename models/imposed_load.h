@@ -1,0 +1,30 @@
+#pragma once
+
+#include <memory>
+
+#include "controllers/signals/signal.h"
+#include "sim/component.h"
+
+namespace tcpmsim {
+
+// A testing machine that prescribes one mechanical quantity: the deflection (position mode) or
+// the force (force mode), following a signal.
+class ImposedLoad final : public Component {
+ public:
+  enum class Quantity { deflection, force };
+  ImposedLoad(std::string group, Quantity quantity, std::unique_ptr<Signal> signal);
+
+  std::vector<OutputDeclaration> outputs() const override;
+  void compute_outputs(const Evaluation& evaluation) const override;
+  double next_breakpoint_after(double t) const override;
+  std::vector<SignalRecord> signal_records() const override;
+
+  Quantity quantity() const { return quantity_; }
+  const Signal& signal() const { return *signal_; }
+
+ private:
+  Quantity quantity_;
+  std::unique_ptr<Signal> signal_;
+};
+
+}  // namespace tcpmsim

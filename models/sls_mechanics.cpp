@@ -1,0 +1,59 @@
+#include "models/sls_mechanics.h"
+
+namespace tcpmsim {
+
+SlsMechanics::SlsMechanics(std::string group, SlsParameters parameters, Drive drive)
+    : Component(std::move(group), "sls_mechanics"), parameters_(parameters), drive_(drive) {}
+
+SlsParameters SlsMechanics::parameters_from_config(const ConfigNode& node) {
+  SlsParameters p;
+  p.k1 = node.quantity("k1", "N/m", ValueCheck::positive());
+  p.k2 = node.quantity("k2", "N/m", ValueCheck::non_negative());
+  p.damping = node.quantity("damping", "N*s/m", ValueCheck::positive());
+  p.force_offset = node.quantity("force_offset", "N");
+  return p;
+}
+
+std::vector<OutputDeclaration> SlsMechanics::outputs() const {
+  return {{"force", "N"}, {"deflection", "m"}, {"elastic_force", "N"}};
+}
+
+std::vector<InputDeclaration> SlsMechanics::inputs() const {
+  return {{"thermal_force", true}, {drive_ == Drive::deflection ? "deflection" : "force", true}};
+}
+
+double SlsMechanics::deflection(const Evaluation& evaluation) const {
+  if (drive_ == Drive::deflection) return input(evaluation, kImposed);
+  // Solve (7.5) for x: F = (k1 + k2) x - k2 x_d + F_T + phi_0.
+  const double dashpot = state(evaluation, 0);
+  return (input(evaluation, kImposed) - input(evaluation, kThermalForce) -
+          parameters_.force_offset + parameters_.k2 * dashpot) /
+         (parameters_.k1 + parameters_.k2);
+}
+
+void SlsMechanics::initialize(const Evaluation& evaluation, std::span<double> own_state) const {
+  // A rested muscle: the dashpot is relaxed, x_d = x.
+  if (drive_ == Drive::deflection) {
+    own_state[0] = input(evaluation, kImposed);
+  } else {
+    own_state[0] = (input(evaluation, kImposed) - input(evaluation, kThermalForce) -
+                    parameters_.force_offset) /
+                   parameters_.k1;
+  }
+}
+
+void SlsMechanics::compute_outputs(const Evaluation& evaluation) const {
+  const double x = deflection(evaluation);
+  const double elastic = parameters_.k1 * x + parameters_.k2 * (x - state(evaluation, 0));
+  set_output(evaluation, kDeflection, x);
+  set_output(evaluation, kElasticForce, elastic);
+  set_output(evaluation, kForce,
+             elastic + input(evaluation, kThermalForce) + parameters_.force_offset);  // (7.5)
+}
+
+void SlsMechanics::compute_derivatives(const Evaluation& evaluation, double* derivatives) const {
+  const double x = deflection(evaluation);
+  set_derivative(derivatives, 0, parameters_.k2 / parameters_.damping * (x - state(evaluation, 0)));
+}
+
+}  // namespace tcpmsim

@@ -1,0 +1,139 @@
+// tcpmsim command line: run and validate scenarios.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "sim/cli/progress.h"
+#include "sim/config/config_error.h"
+#include "sim/run.h"
+#include "sim/scenario.h"
+#include "tcpmsim/version.h"
+
+namespace {
+
+// Exit codes, documented in the README.
+enum ExitCode : int {
+  kSuccess = 0,
+  kSimulationFailed = 1,
+  kUsageError = 2,
+  kConfigError = 3,
+  kOutputError = 4,
+  kInternalError = 5,
+};
+
+struct Options {
+  std::string config;
+  std::string output;
+  std::vector<std::string> overrides;
+  bool quiet = false;
+};
+
+tcpmsim::Scenario load(const Options& options) {
+  return tcpmsim::load_scenario(options.config, options.overrides,
+                                std::make_shared<tcpmsim::UnitSystem>());
+}
+
+int validate(const Options& options) {
+  tcpmsim::Scenario scenario = load(options);
+  std::cout << options.config << ": valid scenario '" << scenario.settings.name << "', "
+            << scenario.settings.duration << " s, " << scenario.system->state_size() << " states, "
+            << scenario.system->channels().size() << " output channels\n";
+  for (const auto& state : scenario.system->states()) {
+    std::cout << "  state  " << state.name << " [" << state.unit << "]\n";
+  }
+  for (const auto& channel : scenario.system->channels()) {
+    std::cout << "  output /" << channel.group << "/" << channel.name << " [" << channel.unit
+              << "]\n";
+  }
+  return kSuccess;
+}
+
+int run(const Options& options) {
+  tcpmsim::Scenario scenario = load(options);
+  const std::string output =
+      options.output.empty() ? "results/" + scenario.settings.name + ".h5" : options.output;
+  tcpmsim::RunOutcome outcome;
+  {
+    tcpmsim::ProgressLine progress(stderr, scenario.settings.duration);
+    auto report = [&](double time, long steps) {
+      if (!options.quiet) progress.update(time, steps);
+    };
+    outcome = tcpmsim::run_scenario(scenario, output, report);
+  }
+  const auto& stats = outcome.statistics;
+  if (!outcome.succeeded) {
+    std::cerr << "tcpmsim: simulation failed: " << outcome.failure << "\n"
+              << "tcpmsim: the record up to the failure is in " << outcome.output_path << "\n";
+    return kSimulationFailed;
+  }
+  if (!options.quiet) {
+    std::cout << "wrote " << outcome.output_path << ": " << stats.output_samples << " samples; "
+              << stats.steps << " steps, " << stats.rhs_evaluations << " RHS evaluations, "
+              << stats.jacobian_evaluations << " Jacobians, " << stats.error_test_failures
+              << " error-test failures, " << stats.nonlinear_convergence_failures
+              << " convergence failures, " << stats.segments << " segments; "
+              << outcome.wall_seconds << " s wall\n";
+  }
+  return kSuccess;
+}
+
+int guarded(int (*command)(const Options&), const Options& options) {
+  try {
+    return command(options);
+  } catch (const tcpmsim::ConfigError& error) {
+    std::cerr << error.what() << "\n";
+    return kConfigError;
+  } catch (const tcpmsim::UnitError& error) {
+    std::cerr << "tcpmsim: " << error.what() << "\n";
+    return kConfigError;
+  } catch (const std::runtime_error& error) {
+    std::cerr << "tcpmsim: " << error.what() << "\n";
+    return kOutputError;
+  } catch (const std::exception& error) {
+    std::cerr << "tcpmsim: internal error: " << error.what() << "\n";
+    return kInternalError;
+  }
+}
+
+void add_common(CLI::App& command, Options& options) {
+  command.add_option("config", options.config, "Scenario file (YAML)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command
+      .add_option("--set", options.overrides,
+                  "Override a value, e.g. --set 'muscle.mechanics.k1=12 N/m' (repeatable)")
+      ->type_name("KEY.PATH=VALUE");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "tcpmsim: simulator of Joule-heated twisted and coiled polymer muscles and "
+      "self-sensing coil actuators"};
+  app.set_version_flag(
+      "--version", std::string("tcpmsim ") + tcpmsim::kVersion + " (" + tcpmsim::kGitCommit + ")");
+  app.require_subcommand(1);
+  Options options;
+
+  CLI::App* run_command = app.add_subcommand("run", "Simulate a scenario and write an HDF5 record");
+  add_common(*run_command, options);
+  run_command->add_option("-o,--output", options.output,
+                          "Output file (default: results/<scenario name>.h5)");
+  run_command->add_flag("-q,--quiet", options.quiet, "No progress line or summary");
+
+  CLI::App* validate_command =
+      app.add_subcommand("validate", "Check a scenario file and list its states and outputs");
+  add_common(*validate_command, options);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    const int code = app.exit(error);
+    return code == 0 ? kSuccess : kUsageError;
+  }
+  if (run_command->parsed()) return guarded(run, options);
+  return guarded(validate, options);
+}

@@ -1,0 +1,45 @@
+#include "sim/component.h"
+
+#include <numeric>
+
+namespace tcpmsim {
+
+Component::Component(std::string group, std::string kind)
+    : group_(std::move(group)), kind_(std::move(kind)) {}
+
+void Component::initialize(const Evaluation&, std::span<double> own_state) const {
+  for (double& value : own_state) value = 0.0;
+}
+
+void Component::compute_outputs(const Evaluation&) const {}
+
+void Component::compute_derivatives(const Evaluation&, double*) const {}
+
+double Component::next_breakpoint_after(double) const {
+  return kNoBreakpoint;
+}
+
+void Component::at_breakpoint(const Evaluation&) {}
+
+namespace {
+std::vector<int> all_indices(std::size_t count) {
+  std::vector<int> indices(count);
+  std::iota(indices.begin(), indices.end(), 0);
+  return indices;
+}
+}  // namespace
+
+Dependencies Component::derivative_dependencies(int) const {
+  return {all_indices(states().size()), all_indices(inputs().size())};
+}
+
+Dependencies Component::output_dependencies(int) const {
+  Dependencies dependencies{all_indices(states().size()), {}};
+  const auto declared = inputs();
+  for (std::size_t i = 0; i < declared.size(); ++i) {
+    if (declared[i].direct_feedthrough) dependencies.inputs.push_back(static_cast<int>(i));
+  }
+  return dependencies;
+}
+
+}  // namespace tcpmsim

@@ -1,0 +1,558 @@
+#include "sim/config/config_node.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace tcpmsim {
+
+// ---------------------------------------------------------------------------------------------
+// ValueCheck
+
+ValueCheck ValueCheck::positive() {
+  ValueCheck check;
+  check.lower_ = 0.0;
+  check.lower_open_ = true;
+  return check;
+}
+
+ValueCheck ValueCheck::non_negative() {
+  return at_least(0.0);
+}
+
+ValueCheck ValueCheck::at_least(double lower) {
+  ValueCheck check;
+  check.lower_ = lower;
+  return check;
+}
+
+ValueCheck ValueCheck::between(double lower, double upper) {
+  ValueCheck check;
+  check.lower_ = lower;
+  check.upper_ = upper;
+  return check;
+}
+
+ValueCheck ValueCheck::fraction() {
+  return between(0.0, 1.0);
+}
+
+bool ValueCheck::accepts(double value) const {
+  if (lower_open_ ? !(value > lower_) : !(value >= lower_)) return false;
+  return value <= upper_;
+}
+
+namespace {
+std::string number_text(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+}  // namespace
+
+std::string ValueCheck::expectation(std::string_view unit) const {
+  const std::string in_unit = unit.empty() || unit == "1" ? "" : " in " + std::string(unit);
+  if (lower_open_ && lower_ == 0.0 && std::isinf(upper_)) return "a positive value" + in_unit;
+  if (lower_ == 0.0 && std::isinf(upper_)) return "a non-negative value" + in_unit;
+  if (std::isinf(upper_)) return "a value of at least " + number_text(lower_) + in_unit;
+  return "a value in [" + number_text(lower_) + ", " + number_text(upper_) + "]" + in_unit;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Suggestions
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> previous(b.size() + 1), current(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) previous[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    current[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t substitution = previous[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1);
+      current[j] = std::min({previous[j] + 1, current[j - 1] + 1, substitution});
+    }
+    std::swap(previous, current);
+  }
+  return previous[b.size()];
+}
+
+std::string closest_match(std::string_view word, const std::vector<std::string>& candidates) {
+  std::string best;
+  std::size_t best_distance = std::max<std::size_t>(2, word.size() / 3) + 1;
+  for (const auto& candidate : candidates) {
+    const std::size_t distance = edit_distance(word, candidate);
+    if (distance < best_distance) {
+      best_distance = distance;
+      best = candidate;
+    }
+  }
+  return best;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The document
+
+struct ConfigDocument {
+  std::string file;
+  YAML::Node root;
+  YAML::Node resolved;
+  std::vector<std::pair<std::string, std::string>> overrides;  // key path, "--set" text
+  std::map<std::string, std::set<std::string>> known_keys;     // mapping path -> asked keys
+  std::set<std::string> consumed;
+  std::shared_ptr<const UnitSystem> units;
+};
+
+namespace {
+
+std::string join(std::string_view path, std::string_view key) {
+  return path.empty() ? std::string(key) : std::string(path) + "." + std::string(key);
+}
+
+bool is_prefix_path(std::string_view prefix, std::string_view path) {
+  if (!path.starts_with(prefix)) return false;
+  return path.size() == prefix.size() || path[prefix.size()] == '.' || path[prefix.size()] == '[';
+}
+
+std::string node_kind(const YAML::Node& node) {
+  if (node.IsMap()) return "mapping";
+  if (node.IsSequence()) return "sequence";
+  if (node.IsNull()) return "empty value";
+  return "scalar";
+}
+
+std::string trim(std::string_view text) {
+  const auto first = text.find_first_not_of(" \t");
+  if (first == std::string_view::npos) return {};
+  const auto last = text.find_last_not_of(" \t");
+  return std::string(text.substr(first, last - first + 1));
+}
+
+void reject_duplicate_keys(const YAML::Node& node, const std::string& file) {
+  if (node.IsMap()) {
+    std::set<std::string> seen;
+    for (const auto& entry : node) {
+      const std::string key = entry.first.as<std::string>();
+      if (!seen.insert(key).second) {
+        const auto mark = entry.first.Mark();
+        throw ConfigError({file, mark.line + 1, mark.column + 1, {}}, key,
+                          "duplicate key '" + key + "'");
+      }
+      reject_duplicate_keys(entry.second, file);
+    }
+  } else if (node.IsSequence()) {
+    for (const auto& element : node) reject_duplicate_keys(element, file);
+  }
+}
+
+// Splits "a.b[2].c" into {"a", "b", "[2]", "c"}.
+std::vector<std::string> split_path(const std::string& path) {
+  std::vector<std::string> parts;
+  std::string current;
+  for (char c : path) {
+    if (c == '.') {
+      if (!current.empty()) parts.push_back(current);
+      current.clear();
+    } else if (c == '[') {
+      if (!current.empty()) parts.push_back(current);
+      current = "[";
+    } else if (c == ']') {
+      parts.push_back(current + "]");
+      current.clear();
+    } else {
+      current += c;
+    }
+  }
+  if (!current.empty()) parts.push_back(current);
+  return parts;
+}
+
+void assign_at(YAML::Node node, const std::vector<std::string>& parts, std::size_t index,
+               const YAML::Node& value, const SourceLocation& origin, const std::string& path) {
+  const std::string& part = parts[index];
+  const bool last = index + 1 == parts.size();
+  if (part.front() == '[') {
+    std::size_t element = 0;
+    const auto digits = std::string_view(part).substr(1, part.size() - 2);
+    const auto [end, error] =
+        std::from_chars(digits.data(), digits.data() + digits.size(), element);
+    if (error != std::errc() || end != digits.data() + digits.size() || !node.IsSequence() ||
+        element >= node.size()) {
+      throw ConfigError(origin, path, "index " + part + " does not name an existing element");
+    }
+    if (last) {
+      node[element] = value;
+    } else {
+      assign_at(node[element], parts, index + 1, value, origin, path);
+    }
+    return;
+  }
+  if (!node.IsMap() && !node.IsNull()) {
+    throw ConfigError(origin, path, "cannot set '" + part + "' inside a " + node_kind(node));
+  }
+  if (last) {
+    node[part] = value;
+  } else {
+    if (!node[part]) node[part] = YAML::Node(YAML::NodeType::Map);
+    assign_at(node[part], parts, index + 1, value, origin, path);
+  }
+}
+
+std::shared_ptr<ConfigDocument> parse_document(const std::string& text, const std::string& name,
+                                               const std::vector<std::string>& overrides,
+                                               std::shared_ptr<const UnitSystem> units) {
+  auto document = std::make_shared<ConfigDocument>();
+  document->file = name;
+  document->units = std::move(units);
+  try {
+    document->root = YAML::Load(text);
+  } catch (const YAML::ParserException& error) {
+    throw ConfigError({name, error.mark.line + 1, error.mark.column + 1, {}}, "",
+                      "invalid YAML: " + error.msg);
+  }
+  if (document->root.IsNull()) document->root = YAML::Node(YAML::NodeType::Map);
+  if (!document->root.IsMap()) {
+    const auto mark = document->root.Mark();
+    throw ConfigError(
+        {name, mark.line + 1, mark.column + 1, {}}, "",
+        "expected a mapping of sections at the top level, got a " + node_kind(document->root));
+  }
+  reject_duplicate_keys(document->root, name);
+  for (const auto& assignment : overrides) {
+    const SourceLocation origin{name, 0, 0, "command line (--set " + assignment + ")"};
+    const auto equals = assignment.find('=');
+    if (equals == std::string::npos || equals == 0 || equals + 1 == assignment.size()) {
+      throw ConfigError(origin, "", "expected --set key.path=value");
+    }
+    const std::string path = trim(assignment.substr(0, equals));
+    YAML::Node value;
+    try {
+      value = YAML::Load(assignment.substr(equals + 1));
+    } catch (const YAML::ParserException& error) {
+      throw ConfigError(origin, path, "the value is not valid YAML: " + error.msg);
+    }
+    assign_at(document->root, split_path(path), 0, value, origin, path);
+    document->overrides.emplace_back(path, assignment);
+  }
+  document->resolved = YAML::Clone(document->root);
+  return document;
+}
+
+}  // namespace
+
+ConfigNode ConfigNode::load_text(const std::string& text, const std::string& name,
+                                 const std::vector<std::string>& overrides,
+                                 std::shared_ptr<const UnitSystem> units) {
+  return ConfigNode(parse_document(text, name, overrides, std::move(units)), {}, "");
+}
+
+ConfigNode ConfigNode::load_file(const std::string& file, const std::vector<std::string>& overrides,
+                                 std::shared_ptr<const UnitSystem> units) {
+  std::ifstream stream(file);
+  if (!stream) throw ConfigError({file, 0, 0, {}}, "", "cannot open the file for reading");
+  std::stringstream buffer;
+  buffer << stream.rdbuf();
+  return load_text(buffer.str(), file, overrides, std::move(units));
+}
+
+ConfigNode::ConfigNode(std::shared_ptr<ConfigDocument> document, YAML::Node node, std::string path)
+    : document_(std::move(document)), node_(std::move(node)), path_(std::move(path)) {
+  if (path_.empty()) node_.reset(document_->root);
+}
+
+ConfigNode ConfigNode::child(const YAML::Node& node, std::string path) const {
+  return ConfigNode(document_, node, std::move(path));
+}
+
+std::string ConfigNode::child_path(std::string_view key) const {
+  return join(path_, key);
+}
+
+const UnitSystem& ConfigNode::units() const {
+  return *document_->units;
+}
+
+SourceLocation ConfigNode::location() const {
+  for (const auto& [overridden, text] : document_->overrides) {
+    if (is_prefix_path(overridden, path_)) {
+      return {document_->file, 0, 0, "command line (--set " + text + ")"};
+    }
+  }
+  const auto mark = node_.Mark();
+  if (mark.is_null()) return {document_->file, 0, 0, {}};
+  return {document_->file, mark.line + 1, mark.column + 1, {}};
+}
+
+void ConfigNode::fail(const std::string& problem) const {
+  throw ConfigError(location(), path_, problem);
+}
+
+bool ConfigNode::has(std::string_view key) const {
+  document_->known_keys[path_].insert(std::string(key));
+  const YAML::Node& node = node_;  // const access never inserts
+  return node.IsMap() && node[std::string(key)].IsDefined();
+}
+
+void ConfigNode::fail_missing(std::string_view key) const {
+  // A misspelt key is the usual reason a required one is missing: point at it.
+  if (node_.IsMap()) {
+    std::vector<std::string> expected{std::string(key)};
+    for (const auto& entry : node_) {
+      const std::string present = entry.first.as<std::string>();
+      if (document_->consumed.count(join(path_, present))) continue;
+      if (!closest_match(present, expected).empty()) {
+        const auto mark = entry.first.Mark();
+        throw ConfigError(
+            {document_->file, mark.line + 1, mark.column + 1, {}}, join(path_, present),
+            "unknown key '" + present + "' (did you mean '" + std::string(key) + "'?)");
+      }
+    }
+  }
+  fail("missing required key '" + std::string(key) + "'");
+}
+
+ConfigNode ConfigNode::at(std::string_view key) const {
+  if (!node_.IsMap())
+    fail("expected a mapping with key '" + std::string(key) + "', got a " + node_kind(node_));
+  if (!has(key)) fail_missing(key);
+  const std::string path = child_path(key);
+  document_->consumed.insert(path);
+  const YAML::Node& node = node_;
+  return child(node[std::string(key)], path);
+}
+
+std::optional<ConfigNode> ConfigNode::find(std::string_view key) const {
+  if (!node_.IsMap()) {
+    if (node_.IsNull()) return std::nullopt;
+    fail("expected a mapping, got a " + node_kind(node_));
+  }
+  if (!has(key)) return std::nullopt;
+  return at(key);
+}
+
+std::vector<ConfigNode> ConfigNode::elements() const {
+  if (!node_.IsSequence()) fail("expected a sequence (a YAML list), got a " + node_kind(node_));
+  std::vector<ConfigNode> result;
+  for (std::size_t i = 0; i < node_.size(); ++i) {
+    const std::string path = path_ + "[" + std::to_string(i) + "]";
+    document_->consumed.insert(path);
+    const YAML::Node& node = node_;
+    result.push_back(child(node[i], path));
+  }
+  return result;
+}
+
+double ConfigNode::as_quantity(std::string_view si_unit, const ValueCheck& check) const {
+  const bool dimensionless = si_unit == "1";
+  const std::string wanted =
+      dimensionless ? "a dimensionless number" : "a quantity in " + std::string(si_unit);
+  if (!node_.IsScalar()) fail("expected " + wanted + ", got a " + node_kind(node_));
+  const std::string text = node_.Scalar();
+  const std::string trimmed = trim(text);
+  double value = 0.0;
+  const char* begin = trimmed.data();
+  const char* end = begin + trimmed.size();
+  if (begin != end && *begin == '+') ++begin;
+  const auto [rest, error] = std::from_chars(begin, end, value);
+  if (error != std::errc() || trimmed.empty()) {
+    fail("expected " + wanted +
+         (dimensionless ? "" : " such as '1.5 " + std::string(si_unit) + "'") + ", got '" + text +
+         "'");
+  }
+  const std::string unit = trim(std::string_view(rest, static_cast<std::size_t>(end - rest)));
+  if (unit.empty() && !dimensionless) {
+    fail("'" + text + "' has no unit; expected a quantity in " + std::string(si_unit) +
+         " (or a unit convertible to it), e.g. '" + trimmed + " " + std::string(si_unit) + "'");
+  }
+  if (!unit.empty()) {
+    try {
+      value = units().convert(value, unit, si_unit);
+    } catch (const UnitError& problem) {
+      fail("wrong unit in '" + text + "': " + problem.what() +
+           (dimensionless ? " (expected a dimensionless number)" : ""));
+    }
+  }
+  if (!std::isfinite(value)) fail("expected a finite value, got '" + text + "'");
+  if (!check.accepts(value))
+    fail("expected " + check.expectation(si_unit) + ", got '" + text + "'");
+  return value;
+}
+
+double ConfigNode::as_number(const ValueCheck& check) const {
+  return as_quantity("1", check);
+}
+
+long ConfigNode::as_integer(const ValueCheck& check) const {
+  if (!node_.IsScalar()) fail("expected an integer, got a " + node_kind(node_));
+  const std::string text = trim(node_.Scalar());
+  long value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size()) {
+    fail("expected an integer, got '" + node_.Scalar() + "'");
+  }
+  if (!check.accepts(static_cast<double>(value))) {
+    fail("expected an integer, " + check.expectation() + ", got '" + node_.Scalar() + "'");
+  }
+  return value;
+}
+
+bool ConfigNode::as_bool() const {
+  bool value = false;
+  if (!node_.IsScalar() || !YAML::convert<bool>::decode(node_, value)) {
+    fail("expected true or false, got '" + (node_.IsScalar() ? node_.Scalar() : node_kind(node_)) +
+         "'");
+  }
+  return value;
+}
+
+std::string ConfigNode::as_text() const {
+  if (!node_.IsScalar()) fail("expected a text value, got a " + node_kind(node_));
+  return node_.Scalar();
+}
+
+std::string ConfigNode::as_choice(std::initializer_list<std::string_view> options) const {
+  const std::string value = as_text();
+  std::vector<std::string> candidates(options.begin(), options.end());
+  if (std::find(candidates.begin(), candidates.end(), value) != candidates.end()) return value;
+  std::string listed;
+  for (const auto& option : candidates) listed += (listed.empty() ? "" : ", ") + option;
+  const std::string suggestion = closest_match(value, candidates);
+  fail("expected one of " + listed + ", got '" + value + "'" +
+       (suggestion.empty() ? "" : " (did you mean '" + suggestion + "'?)"));
+}
+
+double ConfigNode::quantity(std::string_view key, std::string_view si_unit,
+                            const ValueCheck& check) const {
+  return at(key).as_quantity(si_unit, check);
+}
+
+void ConfigNode::record_default(std::string_view key, const std::string& value) const {
+  // Mirror the path into the resolved document, creating mappings on the way.
+  std::vector<std::string> parts = split_path(path_);
+  YAML::Node node = document_->resolved;
+  for (const auto& part : parts) {
+    YAML::Node next;
+    if (part.front() == '[') {
+      next.reset(node[std::stoul(part.substr(1, part.size() - 2))]);
+    } else {
+      if (!node[part]) node[part] = YAML::Node(YAML::NodeType::Map);
+      next.reset(node[part]);
+    }
+    node.reset(next);
+  }
+  node[std::string(key)] = value;
+}
+
+double ConfigNode::quantity_or(std::string_view key, std::string_view si_unit, double fallback,
+                               const ValueCheck& check) const {
+  if (auto value = find(key)) return value->as_quantity(si_unit, check);
+  record_default(key, number_text(fallback) + (si_unit == "1" ? "" : " " + std::string(si_unit)));
+  return fallback;
+}
+
+double ConfigNode::number(std::string_view key, const ValueCheck& check) const {
+  return at(key).as_number(check);
+}
+
+double ConfigNode::number_or(std::string_view key, double fallback, const ValueCheck& check) const {
+  return quantity_or(key, "1", fallback, check);
+}
+
+long ConfigNode::integer(std::string_view key, const ValueCheck& check) const {
+  return at(key).as_integer(check);
+}
+
+long ConfigNode::integer_or(std::string_view key, long fallback, const ValueCheck& check) const {
+  if (auto value = find(key)) return value->as_integer(check);
+  record_default(key, std::to_string(fallback));
+  return fallback;
+}
+
+bool ConfigNode::boolean_or(std::string_view key, bool fallback) const {
+  if (auto value = find(key)) return value->as_bool();
+  record_default(key, fallback ? "true" : "false");
+  return fallback;
+}
+
+std::string ConfigNode::text(std::string_view key) const {
+  return at(key).as_text();
+}
+
+std::string ConfigNode::choice(std::string_view key,
+                               std::initializer_list<std::string_view> options) const {
+  return at(key).as_choice(options);
+}
+
+std::string ConfigNode::choice_or(std::string_view key,
+                                  std::initializer_list<std::string_view> options,
+                                  std::string_view fallback) const {
+  if (auto value = find(key)) return value->as_choice(options);
+  record_default(key, std::string(fallback));
+  return std::string(fallback);
+}
+
+std::pair<double, double> ConfigNode::interval(std::string_view key, std::string_view si_unit,
+                                               const ValueCheck& check) const {
+  const ConfigNode node = at(key);
+  const auto bounds = node.elements();
+  if (bounds.size() != 2)
+    node.fail("expected [lower, upper], got " + std::to_string(bounds.size()) + " values");
+  const double lower = bounds[0].as_quantity(si_unit, check);
+  const double upper = bounds[1].as_quantity(si_unit, check);
+  if (!(lower < upper)) node.fail("expected lower < upper");
+  return {lower, upper};
+}
+
+namespace {
+void find_unknown(const ConfigDocument& document, const YAML::Node& node, const std::string& path) {
+  if (node.IsMap()) {
+    for (const auto& entry : node) {
+      const std::string key = entry.first.as<std::string>();
+      const std::string child = join(path, key);
+      if (!document.consumed.count(child)) {
+        const auto known = document.known_keys.find(path);
+        std::vector<std::string> candidates;
+        if (known != document.known_keys.end()) {
+          candidates.assign(known->second.begin(), known->second.end());
+        }
+        const std::string suggestion = closest_match(key, candidates);
+        std::string problem = "unknown key '" + key + "'";
+        if (!suggestion.empty()) {
+          problem += " (did you mean '" + suggestion + "'?)";
+        } else if (!candidates.empty()) {
+          std::string listed;
+          for (const auto& candidate : candidates)
+            listed += (listed.empty() ? "" : ", ") + candidate;
+          problem += "; known keys here: " + listed;
+        }
+        SourceLocation location{
+            document.file, entry.first.Mark().line + 1, entry.first.Mark().column + 1, {}};
+        for (const auto& [overridden, text] : document.overrides) {
+          if (is_prefix_path(overridden, child))
+            location = {document.file, 0, 0, "command line (--set " + text + ")"};
+        }
+        throw ConfigError(location, child, problem);
+      }
+      find_unknown(document, entry.second, child);
+    }
+  } else if (node.IsSequence()) {
+    for (std::size_t i = 0; i < node.size(); ++i) {
+      find_unknown(document, node[i], path + "[" + std::to_string(i) + "]");
+    }
+  }
+}
+}  // namespace
+
+void ConfigNode::reject_unknown_keys() const {
+  find_unknown(*document_, document_->root, "");
+}
+
+std::string ConfigNode::resolved_yaml() const {
+  YAML::Emitter emitter;
+  emitter << document_->resolved;
+  return emitter.c_str();
+}
+
+}  // namespace tcpmsim

@@ -1,0 +1,114 @@
+#pragma once
+
+#include <yaml-cpp/yaml.h>
+
+#include <initializer_list>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sim/config/config_error.h"
+#include "sim/config/units.h"
+
+namespace tcpmsim {
+
+// A constraint a configured number must satisfy, with the words to explain it.
+class ValueCheck {
+ public:
+  ValueCheck() = default;
+  static ValueCheck positive();
+  static ValueCheck non_negative();
+  static ValueCheck at_least(double lower);
+  static ValueCheck between(double lower, double upper);  // inclusive
+  static ValueCheck fraction();                           // [0, 1]
+  bool accepts(double value) const;
+  // "a positive value", "a value in [0, 1]", ... followed by " in <unit>" when given.
+  std::string expectation(std::string_view unit = "") const;
+
+ private:
+  double lower_ = -std::numeric_limits<double>::infinity();
+  double upper_ = std::numeric_limits<double>::infinity();
+  bool lower_open_ = false;
+};
+
+struct ConfigDocument;
+
+// A node of a scenario file, read strictly: every value is located (file:line:col or the
+// --set that produced it), typed, unit-converted to SI and range-checked; every key the
+// program does not ask for is reported as unknown, with a suggestion.
+class ConfigNode {
+ public:
+  // `overrides` are "key.path=value" strings (the CLI's --set); values are YAML.
+  static ConfigNode load_file(const std::string& file, const std::vector<std::string>& overrides,
+                              std::shared_ptr<const UnitSystem> units);
+  static ConfigNode load_text(const std::string& text, const std::string& name,
+                              const std::vector<std::string>& overrides,
+                              std::shared_ptr<const UnitSystem> units);
+
+  const std::string& path() const { return path_; }
+  SourceLocation location() const;
+  [[noreturn]] void fail(const std::string& problem) const;
+  const UnitSystem& units() const;
+
+  bool is_map() const { return node_.IsMap(); }
+  bool is_sequence() const { return node_.IsSequence(); }
+  bool is_scalar() const { return node_.IsScalar(); }
+
+  // Mapping access. `at` requires the key; `find` and `has` accept its absence.
+  bool has(std::string_view key) const;
+  ConfigNode at(std::string_view key) const;
+  std::optional<ConfigNode> find(std::string_view key) const;
+  std::vector<ConfigNode> elements() const;  // requires a sequence
+
+  // This node as a typed scalar.
+  double as_quantity(std::string_view si_unit, const ValueCheck& check = {}) const;
+  double as_number(const ValueCheck& check = {}) const;
+  long as_integer(const ValueCheck& check = {}) const;
+  bool as_bool() const;
+  std::string as_text() const;
+  std::string as_choice(std::initializer_list<std::string_view> options) const;
+
+  // Keyed shorthands. The *_or forms record the default in the resolved document.
+  double quantity(std::string_view key, std::string_view si_unit,
+                  const ValueCheck& check = {}) const;
+  double quantity_or(std::string_view key, std::string_view si_unit, double fallback,
+                     const ValueCheck& check = {}) const;
+  double number(std::string_view key, const ValueCheck& check = {}) const;
+  double number_or(std::string_view key, double fallback, const ValueCheck& check = {}) const;
+  long integer(std::string_view key, const ValueCheck& check = {}) const;
+  long integer_or(std::string_view key, long fallback, const ValueCheck& check = {}) const;
+  bool boolean_or(std::string_view key, bool fallback) const;
+  std::string text(std::string_view key) const;
+  std::string choice(std::string_view key, std::initializer_list<std::string_view> options) const;
+  std::string choice_or(std::string_view key, std::initializer_list<std::string_view> options,
+                        std::string_view fallback) const;
+  // A two-element sequence [lower, upper] of quantities with lower < upper.
+  std::pair<double, double> interval(std::string_view key, std::string_view si_unit,
+                                     const ValueCheck& check = {}) const;
+
+  // After reading: reports the first key nobody asked for, with a "did you mean".
+  void reject_unknown_keys() const;
+  // The document as read, with overrides applied and defaults filled in.
+  std::string resolved_yaml() const;
+
+ private:
+  ConfigNode(std::shared_ptr<ConfigDocument> document, YAML::Node node, std::string path);
+  ConfigNode child(const YAML::Node& node, std::string path) const;
+  std::string child_path(std::string_view key) const;
+  void record_default(std::string_view key, const std::string& value) const;
+  [[noreturn]] void fail_missing(std::string_view key) const;
+
+  std::shared_ptr<ConfigDocument> document_;
+  YAML::Node node_;
+  std::string path_;
+};
+
+// Edit distance, for "did you mean" suggestions.
+std::size_t edit_distance(std::string_view a, std::string_view b);
+// The closest candidate within a small distance, or empty.
+std::string closest_match(std::string_view word, const std::vector<std::string>& candidates);
+
+}  // namespace tcpmsim

@@ -1,0 +1,60 @@
+#include "sim/config/units.h"
+
+#include <udunits2.h>
+
+namespace tcpmsim {
+
+struct UnitSystem::Handle {
+  ut_system* system = nullptr;
+  ~Handle() {
+    if (system) ut_free_system(system);
+  }
+};
+
+namespace {
+struct UnitDeleter {
+  void operator()(ut_unit* unit) const { ut_free(unit); }
+};
+using UnitPointer = std::unique_ptr<ut_unit, UnitDeleter>;
+
+UnitPointer parse(ut_system* system, std::string_view text) {
+  const std::string spelled = text.empty() ? std::string("1") : std::string(text);
+  return UnitPointer(ut_parse(system, spelled.c_str(), UT_UTF8));
+}
+}  // namespace
+
+UnitSystem::UnitSystem() : handle_(std::make_unique<Handle>()) {
+  // udunits reports database redefinitions on stderr; they are not errors for us.
+  ut_set_error_message_handler(ut_ignore);
+  handle_->system = ut_read_xml(nullptr);
+  if (!handle_->system) {
+    throw UnitError(
+        "could not read the udunits2 unit database (is the Debian package libudunits2-data "
+        "installed?)");
+  }
+}
+
+UnitSystem::~UnitSystem() = default;
+
+bool UnitSystem::convertible(std::string_view from, std::string_view to) const {
+  UnitPointer source = parse(handle_->system, from);
+  UnitPointer target = parse(handle_->system, to);
+  return source && target && ut_are_convertible(source.get(), target.get()) != 0;
+}
+
+double UnitSystem::convert(double value, std::string_view from, std::string_view to) const {
+  UnitPointer source = parse(handle_->system, from);
+  if (!source) throw UnitError("'" + std::string(from) + "' is not a unit");
+  UnitPointer target = parse(handle_->system, to);
+  if (!target) throw UnitError("internal: '" + std::string(to) + "' is not a unit");
+  cv_converter* converter = ut_get_converter(source.get(), target.get());
+  if (!converter) {
+    throw UnitError("unit '" + std::string(from) + "' cannot be converted to '" + std::string(to) +
+                    "'");
+  }
+  const double converted = cv_convert_double(converter, value);
+  cv_free(converter);
+  return converted;
+}
+
+}  // namespace tcpmsim

@@ -1,0 +1,34 @@
+#pragma once
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace tcpmsim {
+
+class UnitError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Unit conversion at the configuration boundary, backed by udunits2 and its unit database.
+// Knows SI prefixes, offset units (degC), and derived units ("N.s/mm", "uH/degC").
+class UnitSystem {
+ public:
+  UnitSystem();
+  ~UnitSystem();
+  UnitSystem(const UnitSystem&) = delete;
+  UnitSystem& operator=(const UnitSystem&) = delete;
+
+  // Converts `value` expressed in `from` into `to`. Throws UnitError if `from` is not a unit
+  // udunits knows or is not convertible to `to`.
+  double convert(double value, std::string_view from, std::string_view to) const;
+  bool convertible(std::string_view from, std::string_view to) const;
+
+ private:
+  struct Handle;
+  std::unique_ptr<Handle> handle_;
+};
+
+}  // namespace tcpmsim

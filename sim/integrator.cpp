@@ -1,0 +1,351 @@
+#include "sim/integrator.h"
+
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_band.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunlinsol/sunlinsol_klu.h>
+#include <sunmatrix/sunmatrix_band.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+namespace tcpmsim {
+
+// All CVODE handles, released in reverse order of creation.
+struct detail::CvodeHandles {
+  SUNContext context = nullptr;
+  N_Vector state = nullptr;
+  N_Vector scratch = nullptr;
+  N_Vector tolerances = nullptr;
+  SUNMatrix matrix = nullptr;
+  SUNLinearSolver linear_solver = nullptr;
+  void* memory = nullptr;
+
+  // Bookkeeping the callbacks need.
+  System* system = nullptr;
+  // Piecewise signals are sampled inside [segment_start, segment_end], a few rounding errors
+  // inside the segment, so each segment sees one piece of every signal, whatever the rounding
+  // of times composed from shifted pieces.
+  double segment_start = 0.0;
+  double segment_end = 0.0;
+  double signal_time(double t) const { return std::clamp(t, segment_start, segment_end); }
+  std::string last_message;
+  std::string rhs_problem;
+  double relative_tolerance = 0.0;
+  SparsityPattern pattern;
+  std::vector<std::vector<int>> column_groups;
+  std::vector<double> perturbed;
+  std::vector<double> perturbed_derivatives;
+
+  ~CvodeHandles() {
+    if (memory) CVodeFree(&memory);
+    if (linear_solver) SUNLinSolFree(linear_solver);
+    if (matrix) SUNMatDestroy(matrix);
+    if (tolerances) N_VDestroy(tolerances);
+    if (scratch) N_VDestroy(scratch);
+    if (state) N_VDestroy(state);
+    if (context) SUNContext_Free(&context);
+  }
+};
+
+namespace {
+
+// Times closer than this are the same instant for breakpoint purposes.
+double time_margin(double t) {
+  return 64.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t));
+}
+
+constexpr int kUnrecoverable = -1;
+constexpr int kRecoverable = 1;
+
+detail::CvodeHandles& cvode_of(void* user_data) {
+  return *static_cast<detail::CvodeHandles*>(user_data);
+}
+
+int right_hand_side(realtype t, N_Vector y, N_Vector ydot, void* user_data) {
+  auto& cv = cvode_of(user_data);
+  const double* state = N_VGetArrayPointer(y);
+  double* derivatives = N_VGetArrayPointer(ydot);
+  const int size = cv.system->state_size();
+  for (int i = 0; i < size; ++i) {
+    if (!std::isfinite(state[i])) {
+      cv.rhs_problem = "state " + cv.system->states()[static_cast<std::size_t>(i)].name +
+                       " is not finite at t = " + std::to_string(t) + " s";
+      return kUnrecoverable;
+    }
+  }
+  cv.system->evaluate_derivatives(t, cv.signal_time(t), state, derivatives);
+  for (int i = 0; i < size; ++i) {
+    if (!std::isfinite(derivatives[i])) {
+      const auto& info = cv.system->states()[static_cast<std::size_t>(i)];
+      cv.rhs_problem = "the derivative of " + info.name + " (component " + info.owner->group() +
+                       "/" + info.owner->kind() + ") is not finite at t = " + std::to_string(t) +
+                       " s";
+      return kRecoverable;
+    }
+  }
+  return 0;
+}
+
+// CVODE zeroes the whole sparse matrix, structure included, before each Jacobian call.
+void write_structure(const SparsityPattern& pattern, SUNMatrix matrix) {
+  sunindextype* column_start = SUNSparseMatrix_IndexPointers(matrix);
+  sunindextype* row_index = SUNSparseMatrix_IndexValues(matrix);
+  sunindextype entry = 0;
+  for (int column = 0; column < pattern.size; ++column) {
+    column_start[column] = entry;
+    for (int row : pattern.rows_of_column[static_cast<std::size_t>(column)]) {
+      row_index[entry++] = row;
+    }
+  }
+  column_start[pattern.size] = entry;
+}
+
+// Column-grouped finite differences into the sparse (CSC) matrix KLU factors.
+int sparse_jacobian(realtype t, N_Vector y, N_Vector fy, SUNMatrix jacobian, void* user_data,
+                    N_Vector, N_Vector, N_Vector) {
+  auto& cv = cvode_of(user_data);
+  const double* state = N_VGetArrayPointer(y);
+  const double* base = N_VGetArrayPointer(fy);
+  const double* absolute = N_VGetArrayPointer(cv.tolerances);
+  write_structure(cv.pattern, jacobian);
+  double* data = SUNSparseMatrix_Data(jacobian);
+  const sunindextype* column_start = SUNSparseMatrix_IndexPointers(jacobian);
+  const double root_epsilon = std::sqrt(std::numeric_limits<double>::epsilon());
+  std::copy(state, state + cv.pattern.size, cv.perturbed.begin());
+  for (const auto& group : cv.column_groups) {
+    for (int column : group) {
+      const double scale = cv.relative_tolerance * std::abs(state[column]) + absolute[column];
+      cv.perturbed[static_cast<std::size_t>(column)] +=
+          root_epsilon * std::max(std::abs(state[column]), scale);
+    }
+    cv.system->evaluate_derivatives(t, cv.signal_time(t), cv.perturbed.data(),
+                                    cv.perturbed_derivatives.data());
+    for (int column : group) {
+      const auto c = static_cast<std::size_t>(column);
+      const double increment = cv.perturbed[c] - state[column];
+      sunindextype entry = column_start[column];
+      for (int row : cv.pattern.rows_of_column[c]) {
+        data[entry++] =
+            (cv.perturbed_derivatives[static_cast<std::size_t>(row)] - base[row]) / increment;
+      }
+      cv.perturbed[c] = state[column];
+    }
+  }
+  return 0;
+}
+
+void capture_error(int, const char* module, const char* function, char* message, void* user_data) {
+  cvode_of(user_data).last_message = std::string(module) + "/" + function + ": " + message;
+}
+
+void check(int flag, const char* call) {
+  if (flag < 0) {
+    throw std::runtime_error(std::string("CVODE setup failed in ") + call + ": " +
+                             CVodeGetReturnFlagName(flag));
+  }
+}
+
+}  // namespace
+
+Integrator::Integrator(System& system, SolverSettings settings)
+    : cvode_(std::make_unique<detail::CvodeHandles>()),
+      system_(system),
+      settings_(std::move(settings)) {
+  const int size = system_.state_size();
+  if (size == 0) throw std::logic_error("the system has no continuous states to integrate");
+  auto& cv = *cvode_;
+  cv.system = &system_;
+  cv.relative_tolerance = settings_.relative_tolerance;
+  check(SUNContext_Create(nullptr, &cv.context), "SUNContext_Create");
+  cv.state = N_VNew_Serial(size, cv.context);
+  cv.scratch = N_VNew_Serial(size, cv.context);
+  cv.tolerances = N_VNew_Serial(size, cv.context);
+  double* tolerances = N_VGetArrayPointer(cv.tolerances);
+  for (int i = 0; i < size; ++i) {
+    const auto index = static_cast<std::size_t>(i);
+    tolerances[i] = settings_.absolute_tolerances.empty()
+                        ? system_.states()[index].absolute_tolerance
+                        : settings_.absolute_tolerances.at(index);
+  }
+  cv.memory = CVodeCreate(CV_BDF, cv.context);
+  if (!cv.memory) throw std::runtime_error("CVodeCreate failed");
+}
+
+Integrator::~Integrator() = default;
+
+void Integrator::attach_linear_solver() {
+  auto& cv = *cvode_;
+  const int size = system_.state_size();
+  switch (settings_.linear_solver) {
+    case LinearSolverKind::dense:
+      cv.matrix = SUNDenseMatrix(size, size, cv.context);
+      cv.linear_solver = SUNLinSol_Dense(cv.state, cv.matrix, cv.context);
+      break;
+    case LinearSolverKind::band: {
+      const SparsityPattern pattern = system_.jacobian_pattern();
+      cv.matrix =
+          SUNBandMatrix(size, pattern.upper_bandwidth(), pattern.lower_bandwidth(), cv.context);
+      cv.linear_solver = SUNLinSol_Band(cv.state, cv.matrix, cv.context);
+      break;
+    }
+    case LinearSolverKind::klu: {
+      cv.pattern = system_.jacobian_pattern();
+      cv.column_groups = cv.pattern.column_groups();
+      cv.perturbed.assign(static_cast<std::size_t>(size), 0.0);
+      cv.perturbed_derivatives.assign(static_cast<std::size_t>(size), 0.0);
+      cv.matrix = SUNSparseMatrix(size, size, cv.pattern.non_zeros(), CSC_MAT, cv.context);
+      write_structure(cv.pattern, cv.matrix);
+      cv.linear_solver = SUNLinSol_KLU(cv.state, cv.matrix, cv.context);
+      break;
+    }
+  }
+  if (!cv.matrix || !cv.linear_solver)
+    throw std::runtime_error("could not create the linear solver");
+  check(CVodeSetLinearSolver(cv.memory, cv.linear_solver, cv.matrix), "CVodeSetLinearSolver");
+  if (settings_.linear_solver == LinearSolverKind::klu) {
+    check(CVodeSetJacFn(cv.memory, sparse_jacobian), "CVodeSetJacFn");
+  }
+}
+
+SolverStatistics Integrator::run(double t0, double t_end, double output_interval, OutputSink& sink,
+                                 const Progress& progress) {
+  auto& cv = *cvode_;
+  const int size = system_.state_size();
+  double* state = N_VGetArrayPointer(cv.state);
+  system_.initialize(t0, state);
+
+  SolverStatistics totals;
+  auto accumulate = [&] {
+    long value = 0;
+    CVodeGetNumSteps(cv.memory, &value), totals.steps += value;
+    CVodeGetNumRhsEvals(cv.memory, &value), totals.rhs_evaluations += value;
+    CVodeGetNumLinSolvSetups(cv.memory, &value), totals.linear_solver_setups += value;
+    CVodeGetNumErrTestFails(cv.memory, &value), totals.error_test_failures += value;
+    CVodeGetNumNonlinSolvIters(cv.memory, &value), totals.nonlinear_iterations += value;
+    CVodeGetNumNonlinSolvConvFails(cv.memory, &value),
+        totals.nonlinear_convergence_failures += value;
+    CVodeGetNumJacEvals(cv.memory, &value), totals.jacobian_evaluations += value;
+    CVodeGetNumLinRhsEvals(cv.memory, &value), totals.rhs_evaluations_for_jacobian += value;
+  };
+
+  auto fail = [&](int flag) -> SolverFailure {
+    double now = t0;
+    CVodeGetCurrentTime(cv.memory, &now);
+    accumulate();
+    std::ostringstream message;
+    message << "CVODE failed with " << CVodeGetReturnFlagName(flag) << " at t = " << now << " s";
+    if (!cv.rhs_problem.empty()) message << ": " << cv.rhs_problem;
+    if (!cv.last_message.empty()) message << "\n  CVODE said: " << cv.last_message;
+    CVodeGetErrWeights(cv.memory, cv.scratch);
+    std::vector<double> weighted(static_cast<std::size_t>(size));
+    const double* weights = N_VGetArrayPointer(cv.scratch);
+    N_Vector local_errors = N_VClone(cv.scratch);
+    CVodeGetEstLocalErrors(cv.memory, local_errors);
+    const double* errors = N_VGetArrayPointer(local_errors);
+    for (int i = 0; i < size; ++i)
+      weighted[static_cast<std::size_t>(i)] = std::abs(errors[i] * weights[i]);
+    N_VDestroy(local_errors);
+    std::vector<int> order(static_cast<std::size_t>(size));
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      return weighted[static_cast<std::size_t>(a)] > weighted[static_cast<std::size_t>(b)];
+    });
+    message << "\n  state entries with the largest weighted local error:";
+    for (std::size_t k = 0; k < std::min<std::size_t>(3, order.size()); ++k) {
+      const auto i = static_cast<std::size_t>(order[k]);
+      message << "\n    " << system_.states()[i].name << " = " << state[order[k]] << " "
+              << system_.states()[i].unit << " (weighted error " << weighted[i] << ")";
+    }
+    return SolverFailure(message.str(), now, totals);
+  };
+
+  bool initialized = false;
+  auto start_segment = [&](double t_start) {
+    if (!initialized) {
+      check(CVodeInit(cv.memory, right_hand_side, t_start, cv.state), "CVodeInit");
+      check(CVodeSetUserData(cv.memory, cvode_.get()), "CVodeSetUserData");
+      check(CVodeSetErrHandlerFn(cv.memory, capture_error, cvode_.get()), "CVodeSetErrHandlerFn");
+      check(CVodeSVtolerances(cv.memory, settings_.relative_tolerance, cv.tolerances),
+            "CVodeSVtolerances");
+      attach_linear_solver();
+      check(CVodeSetMaxNumSteps(cv.memory, -1), "CVodeSetMaxNumSteps");
+      if (settings_.max_step > 0)
+        check(CVodeSetMaxStep(cv.memory, settings_.max_step), "CVodeSetMaxStep");
+      initialized = true;
+    } else {
+      accumulate();
+      check(CVodeReInit(cv.memory, t_start, cv.state), "CVodeReInit");
+    }
+    if (settings_.initial_step > 0)
+      check(CVodeSetInitStep(cv.memory, settings_.initial_step), "CVodeSetInitStep");
+  };
+
+  // Output grid: t0 + k * interval for k = 0..last_on_grid, then t_end if it is off the grid.
+  const double span = t_end - t0;
+  const long last_on_grid = static_cast<long>(std::floor(span / output_interval * (1.0 + 1e-12)));
+  const bool end_on_grid = std::abs(t0 + static_cast<double>(last_on_grid) * output_interval -
+                                    t_end) <= 1e-9 * std::max(1.0, std::abs(t_end));
+  const long sample_count = last_on_grid + (end_on_grid ? 1 : 2);
+  auto sample_time = [&](long k) {
+    return k > last_on_grid || (k == last_on_grid && end_on_grid)
+               ? t_end
+               : t0 + static_cast<double>(k) * output_interval;
+  };
+  long sample = 0;
+  long steps_taken = 0;
+
+  double t = t0;
+  while (t < t_end) {
+    // Breakpoints closer than a few rounding errors are one event; a signal composed from
+    // shifted pieces may report an instant that is t itself after rounding.
+    const double margin = time_margin(t);
+    double stop = system_.next_breakpoint_after(t);
+    while (stop <= t + 2.0 * margin)
+      stop = system_.next_breakpoint_after(std::max(stop, t + 2.0 * margin));
+    stop = std::min(stop, t_end);
+    const bool last_segment = stop >= t_end;
+    start_segment(t);
+    check(CVodeSetStopTime(cv.memory, stop), "CVodeSetStopTime");
+    cv.segment_start = t + margin;
+    cv.segment_end = stop - time_margin(stop);
+    ++totals.segments;
+    double reached = t;
+    while (reached < stop) {
+      cv.rhs_problem.clear();
+      const int flag = CVode(cv.memory, stop, cv.state, &reached, CV_ONE_STEP);
+      if (flag < 0) throw fail(flag);
+      if (flag == CV_TSTOP_RETURN) reached = stop;
+      if (++steps_taken > settings_.max_steps) {
+        accumulate();
+        throw SolverFailure("more than " + std::to_string(settings_.max_steps) +
+                                " solver steps; raise solver.max_steps if this is expected",
+                            reached, totals);
+      }
+      // Interpolate every output time this step covered; a time equal to a breakpoint belongs
+      // to the next segment (outputs are right-continuous), except the final time.
+      for (; sample < sample_count; ++sample) {
+        const double when = sample_time(sample);
+        if (when > reached || (when >= stop && !last_segment)) break;
+        check(CVodeGetDky(cv.memory, when, 0, cv.scratch), "CVodeGetDky");
+        system_.evaluate_outputs(when, cv.signal_time(when), N_VGetArrayPointer(cv.scratch));
+        sink.record(when, system_.signals());
+        ++totals.output_samples;
+      }
+      if (progress) progress(reached, steps_taken);
+    }
+    t = stop;
+    if (t < t_end) system_.at_breakpoint(t, t - time_margin(t), state);
+  }
+  accumulate();
+  final_state_.assign(state, state + size);
+  return totals;
+}
+
+}  // namespace tcpmsim

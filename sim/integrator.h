@@ -1,0 +1,90 @@
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "sim/system.h"
+
+namespace tcpmsim {
+
+namespace detail {
+struct CvodeHandles;
+}
+
+enum class LinearSolverKind { dense, band, klu };
+
+struct SolverSettings {
+  double relative_tolerance = 1e-6;
+  std::vector<double> absolute_tolerances;  // one per state; empty: the states' defaults
+  LinearSolverKind linear_solver = LinearSolverKind::dense;
+  double max_step = 0.0;      // 0: no limit
+  double initial_step = 0.0;  // 0: CVODE's estimate
+  long max_steps = 50'000'000;
+};
+
+// CVODE's counters, summed over all integration segments.
+struct SolverStatistics {
+  long steps = 0;
+  long rhs_evaluations = 0;
+  long rhs_evaluations_for_jacobian = 0;
+  long jacobian_evaluations = 0;
+  long linear_solver_setups = 0;
+  long error_test_failures = 0;
+  long nonlinear_iterations = 0;
+  long nonlinear_convergence_failures = 0;
+  long segments = 0;  // hard stops + 1
+  long output_samples = 0;
+};
+
+// Receives the outputs at each output time.
+class OutputSink {
+ public:
+  virtual ~OutputSink() = default;
+  virtual void record(double time, std::span<const double> signals) = 0;
+};
+
+class SolverFailure : public std::runtime_error {
+ public:
+  SolverFailure(const std::string& message, double time, SolverStatistics statistics)
+      : std::runtime_error(message), time_(time), statistics_(statistics) {}
+  double time() const { return time_; }
+  const SolverStatistics& statistics() const { return statistics_; }
+
+ private:
+  double time_;
+  SolverStatistics statistics_;
+};
+
+// CVODE (BDF, Newton) over a System. Steps with CV_ONE_STEP, writes outputs by interpolation
+// (CVodeGetDky) on a uniform grid, stops hard at every breakpoint the components declare and
+// restarts there with CVodeReInit.
+class Integrator {
+ public:
+  Integrator(System& system, SolverSettings settings);
+  ~Integrator();
+  Integrator(const Integrator&) = delete;
+  Integrator& operator=(const Integrator&) = delete;
+
+  using Progress = std::function<void(double time, long steps)>;
+
+  // Integrates from t0 to t_end and records outputs at t0 + k * output_interval (and t_end).
+  // Throws SolverFailure with the CVODE flag, the time and the worst state entries.
+  SolverStatistics run(double t0, double t_end, double output_interval, OutputSink& sink,
+                       const Progress& progress = {});
+
+  const std::vector<double>& final_state() const { return final_state_; }
+
+ private:
+  void attach_linear_solver();
+
+  std::unique_ptr<detail::CvodeHandles> cvode_;
+  System& system_;
+  SolverSettings settings_;
+  std::vector<double> final_state_;
+};
+
+}  // namespace tcpmsim

@@ -1,0 +1,64 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "sim/integrator.h"
+#include "sim/system.h"
+
+namespace tcpmsim {
+
+struct RecordMetadata {
+  std::string scenario_name;
+  std::string config_file;
+  std::string resolved_config;  // YAML
+  std::uint64_t seed = 0;
+  double relative_tolerance = 0.0;
+  std::string linear_solver;
+  double output_interval = 0.0;
+  double duration = 0.0;
+};
+
+// Writes a run to one HDF5 file: /time plus one dataset per output channel, grouped by
+// component (/muscle/force, ...), each with a `units` attribute; /inputs describes every
+// prescribed signal; root attributes carry the version, git commit, resolved config, seed and
+// solver statistics. Datasets are chunked, shuffled and deflated, and written chunk by chunk,
+// so memory stays bounded however long the run. The file is written as "<out>.partial" and
+// renamed to <out> only when complete; a failed run is kept as "<out stem>.failed.h5" with
+// status = "failed" and the reason.
+class Hdf5Recorder final : public OutputSink {
+ public:
+  Hdf5Recorder(std::string path, const System& system, const RecordMetadata& metadata,
+               std::size_t chunk_samples = 4096);
+  ~Hdf5Recorder() override;
+  Hdf5Recorder(const Hdf5Recorder&) = delete;
+  Hdf5Recorder& operator=(const Hdf5Recorder&) = delete;
+
+  void record(double time, std::span<const double> signals) override;
+  // Flushes, writes the statistics, closes and renames to the final path.
+  void finish(const SolverStatistics& statistics);
+  // Keeps what was written as the failed file; returns its path.
+  std::string fail(const std::string& reason, const SolverStatistics& statistics);
+
+  static std::string partial_path(const std::string& path);
+  static std::string failed_path(const std::string& path);
+
+ private:
+  struct File;
+  void flush();
+  void close_with(const std::string& status, const std::string& reason,
+                  const SolverStatistics& statistics);
+
+  std::string path_;
+  std::unique_ptr<File> file_;
+  std::size_t chunk_samples_;
+  std::vector<int> signal_indices_;           // which signals go to which dataset
+  std::vector<std::vector<double>> buffers_;  // [0] is time
+  std::size_t written_ = 0;
+  bool closed_ = false;
+};
+
+}  // namespace tcpmsim

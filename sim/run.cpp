@@ -1,0 +1,64 @@
+#include "sim/run.h"
+
+#include <H5Cpp.h>
+
+#include <chrono>
+#include <filesystem>
+
+#include "sim/io/hdf5_recorder.h"
+
+namespace tcpmsim {
+
+const char* linear_solver_name(LinearSolverKind kind) {
+  switch (kind) {
+    case LinearSolverKind::band:
+      return "band";
+    case LinearSolverKind::klu:
+      return "klu";
+    case LinearSolverKind::dense:
+      break;
+  }
+  return "dense";
+}
+
+RunOutcome run_scenario(Scenario& scenario, const std::string& output_path,
+                        const Integrator::Progress& progress) {
+  const auto started = std::chrono::steady_clock::now();
+  const auto parent = std::filesystem::path(output_path).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent);
+
+  RecordMetadata metadata{scenario.settings.name,
+                          scenario.source,
+                          scenario.resolved_yaml,
+                          scenario.settings.seed,
+                          scenario.solver.relative_tolerance,
+                          linear_solver_name(scenario.solver.linear_solver),
+                          scenario.settings.output_interval,
+                          scenario.settings.duration};
+  RunOutcome outcome;
+  try {
+    Hdf5Recorder recorder(output_path, *scenario.system, metadata);
+    Integrator integrator(*scenario.system, scenario.solver);
+    try {
+      outcome.statistics = integrator.run(0.0, scenario.settings.duration,
+                                          scenario.settings.output_interval, recorder, progress);
+      recorder.finish(outcome.statistics);
+      outcome.output_path = output_path;
+      outcome.succeeded = true;
+    } catch (const SolverFailure& failure) {
+      outcome.statistics = failure.statistics();
+      outcome.failure = failure.what();
+      outcome.output_path = recorder.fail(failure.what(), failure.statistics());
+    }
+  } catch (const H5::Exception& error) {
+    throw std::runtime_error("cannot write " + output_path + ": HDF5 " + error.getFuncName() +
+                             ": " + error.getDetailMsg());
+  } catch (const std::filesystem::filesystem_error& error) {
+    throw std::runtime_error(std::string("cannot write the output: ") + error.what());
+  }
+  outcome.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return outcome;
+}
+
+}  // namespace tcpmsim

@@ -1,0 +1,232 @@
+#include "sim/scenario.h"
+
+#include <cmath>
+
+#include "controllers/joule_drive.h"
+#include "controllers/signals/signal_config.h"
+#include "models/coil_impedance.h"
+#include "models/hanging_mass.h"
+#include "models/imposed_load.h"
+#include "models/sensor.h"
+#include "models/sls_mechanics.h"
+#include "models/thermal_force.h"
+#include "models/thermal_node.h"
+
+namespace tcpmsim {
+
+namespace {
+
+constexpr const char* kMuscle = "muscle";
+constexpr const char* kDrive = "drive";
+constexpr const char* kLoad = "load";
+
+ScenarioSettings read_settings(const ConfigNode& root) {
+  ScenarioSettings settings;
+  const ConfigNode scenario = root.at("scenario");
+  settings.name = scenario.text("name");
+  if (settings.name.empty() || settings.name.find_first_of("/\\ ") != std::string::npos) {
+    scenario.at("name").fail(
+        "expected a non-empty name without spaces or slashes (it names the output file)");
+  }
+  if (scenario.has("description")) settings.description = scenario.text("description");
+  settings.duration = scenario.quantity("duration", "s", ValueCheck::positive());
+  settings.seed =
+      static_cast<std::uint64_t>(scenario.integer_or("seed", 0, ValueCheck::non_negative()));
+  const ConfigNode output = root.at("output");
+  const double rate = output.quantity("rate", "Hz", ValueCheck::positive());
+  settings.output_interval = 1.0 / rate;
+  return settings;
+}
+
+// What the load needs to know about the muscle.
+struct MuscleSummary {
+  SlsParameters mechanics;
+  double initial_thermal_force = 0.0;
+  bool has_temperature = false;
+  const CoilImpedance* coil = nullptr;
+};
+
+MuscleSummary build_thermal(System& system, const ConfigNode& muscle,
+                            const SignalContext& signals) {
+  MuscleSummary summary;
+  const ConfigNode thermal_force = muscle.at("thermal_force");
+  const std::string form = thermal_force.choice("form", {"physical", "reduced"});
+  if (form == "reduced") {
+    if (muscle.has("thermal")) {
+      muscle.at("thermal").fail(
+          "the reduced thermal form (7.1) has no thermal node; remove muscle.thermal or use "
+          "thermal_force.form: physical");
+    }
+    auto& reduced = system.add(ReducedThermalForce::from_config(kMuscle, thermal_force));
+    system.connect(reduced, "power", "drive.power");
+    summary.initial_thermal_force = reduced.parameters().initial_thermal_force;
+    summary.has_temperature = reduced.parameters().force_per_kelvin.has_value();
+    return summary;
+  }
+  auto& node = system.add(ThermalNode::from_config(kMuscle, muscle.at("thermal"), signals));
+  system.connect(node, "power", "drive.power");
+  auto& force = system.add(PhysicalThermalForce::from_config(kMuscle, thermal_force));
+  system.connect(force, "temperature", "muscle.temperature");
+  // The thermal node starts at its initial temperature; F_T follows from it.
+  summary.initial_thermal_force =
+      force.force_per_kelvin() * (node.initial_temperature(0.0) - force.reference_temperature());
+  summary.has_temperature = true;
+  return summary;
+}
+
+MuscleSummary build_muscle(System& system, const ConfigNode& muscle, SlsMechanics::Drive drive,
+                           const SignalContext& signals) {
+  MuscleSummary summary = build_thermal(system, muscle, signals);
+  summary.mechanics = SlsMechanics::parameters_from_config(muscle.at("mechanics"));
+  auto& mechanics = system.add(std::make_unique<SlsMechanics>(kMuscle, summary.mechanics, drive));
+  system.connect(mechanics, "thermal_force", "muscle.thermal_force");
+  if (drive == SlsMechanics::Drive::deflection) {
+    system.connect(mechanics, "deflection", "load.deflection");
+  } else {
+    system.connect(mechanics, "force", "load.force");
+  }
+  const ConfigNode resistance = muscle.at("resistance");
+  const ConfigNode inductance = muscle.at("inductance");
+  auto& coil = system.add(std::make_unique<CoilImpedance>(
+      kMuscle, InductanceLaw::from_config(inductance), ResistanceLaw::from_config(resistance)));
+  system.connect(coil, "deflection", "muscle.deflection");
+  if (coil.needs_temperature()) {
+    if (!summary.has_temperature) {
+      (coil.resistance().rho_T != 0.0 ? resistance : inductance)
+          .fail(
+              "depends on temperature, but the reduced thermal form reports none; give "
+              "muscle.thermal_force.force_per_kelvin");
+    }
+    system.connect(coil, "temperature", "muscle.temperature");
+  }
+  summary.coil = &coil;
+  return summary;
+}
+
+void check_deflection_range(const ConfigNode& node, const Signal& deflection,
+                            const MuscleSummary& muscle, double duration) {
+  const double lowest = deflection.range(0.0, duration).first;
+  const double singular = -muscle.coil->inductance().lambda_x;
+  if (!(lowest > singular)) {
+    node.fail("the deflection reaches " + std::to_string(lowest) + " m, at or below -lambda_x = " +
+              std::to_string(singular) + " m where the inductance law (6.3) is singular");
+  }
+}
+
+void add_sensor(System& system, const ConfigNode& load, const std::string& name,
+                const std::string& unit, const std::string& source, const char* resolution_key) {
+  const double resolution = load.quantity_or(resolution_key, unit, 0.0, ValueCheck::non_negative());
+  auto& sensor = system.add(std::make_unique<Sensor>(kLoad, name, unit, resolution));
+  system.connect(sensor, "measured", source);
+}
+
+void build_load(System& system, const ConfigNode& load, const std::string& type,
+                const MuscleSummary& muscle, const SignalContext& signals) {
+  if (type == "deflection") {
+    const ConfigNode signal_node = load.at("deflection");
+    auto signal = read_signal(signal_node, "m", signals);
+    check_deflection_range(signal_node, *signal, muscle, signals.duration);
+    system.add(
+        std::make_unique<ImposedLoad>(kLoad, ImposedLoad::Quantity::deflection, std::move(signal)));
+    add_sensor(system, load, "force", "N", "muscle.force", "load_cell_resolution");
+  } else if (type == "force") {
+    system.add(std::make_unique<ImposedLoad>(kLoad, ImposedLoad::Quantity::force,
+                                             read_signal(load.at("force"), "N", signals)));
+    add_sensor(system, load, "deflection", "m", "muscle.deflection", "position_resolution");
+  } else {
+    HangingMassParameters p;
+    p.mass = load.quantity("mass", "kg", ValueCheck::positive());
+    p.gravity = load.quantity_or("gravity", "m/s^2", p.gravity, ValueCheck::non_negative());
+    p.damping = load.quantity_or("damping", "N*s/m", 0.0, ValueCheck::non_negative());
+    const ConfigNode initial = load.at("initial_deflection");
+    if (initial.is_scalar() && initial.as_text() == "equilibrium") {
+      // Static balance of (7.5) with a relaxed dashpot: m g = k1 x + F_T(0) + phi_0.
+      p.initial_deflection =
+          (p.mass * p.gravity - muscle.initial_thermal_force - muscle.mechanics.force_offset) /
+          muscle.mechanics.k1;
+    } else {
+      p.initial_deflection = initial.as_quantity("m");
+    }
+    p.initial_velocity = load.quantity_or("initial_velocity", "m/s", 0.0);
+    auto& mass = system.add(std::make_unique<HangingMass>(kLoad, p));
+    system.connect(mass, "force", "muscle.force");
+    add_sensor(system, load, "force", "N", "muscle.force", "load_cell_resolution");
+  }
+}
+
+void read_absolute_tolerances(const ConfigNode& solver, const System& system,
+                              SolverSettings& settings) {
+  settings.absolute_tolerances.clear();
+  const auto overrides = solver.find("atol");
+  for (const auto& state : system.states()) {
+    double tolerance = state.absolute_tolerance;
+    const auto dot = state.name.find('.');
+    const std::string group = state.name.substr(0, dot), name = state.name.substr(dot + 1);
+    if (overrides) {
+      if (auto group_node = overrides->find(group)) {
+        if (auto value = group_node->find(name))
+          tolerance = value->as_quantity(state.unit, ValueCheck::positive());
+      }
+    }
+    settings.absolute_tolerances.push_back(tolerance);
+  }
+}
+
+SolverSettings read_solver(const ConfigNode& root, const System& system) {
+  SolverSettings settings;
+  const auto solver = root.find("solver");
+  if (!solver) {
+    for (const auto& state : system.states())
+      settings.absolute_tolerances.push_back(state.absolute_tolerance);
+    return settings;
+  }
+  settings.relative_tolerance =
+      solver->number_or("rtol", settings.relative_tolerance, ValueCheck::between(1e-14, 0.1));
+  const std::string kind = solver->choice_or("linear_solver", {"dense", "band", "klu"}, "dense");
+  settings.linear_solver = kind == "band"  ? LinearSolverKind::band
+                           : kind == "klu" ? LinearSolverKind::klu
+                                           : LinearSolverKind::dense;
+  settings.max_step = solver->quantity_or("max_step", "s", 0.0, ValueCheck::non_negative());
+  settings.initial_step = solver->quantity_or("initial_step", "s", 0.0, ValueCheck::non_negative());
+  settings.max_steps = solver->integer_or("max_steps", settings.max_steps, ValueCheck::at_least(1));
+  read_absolute_tolerances(*solver, system, settings);
+  return settings;
+}
+
+}  // namespace
+
+Scenario build_scenario(const ConfigNode& root) {
+  Scenario scenario;
+  scenario.settings = read_settings(root);
+  const SignalContext signals{scenario.settings.seed, scenario.settings.duration};
+  scenario.system = std::make_unique<System>();
+  System& system = *scenario.system;
+
+  const ConfigNode load = root.at("load");
+  const std::string load_type = load.choice("type", {"deflection", "force", "hanging_mass"});
+  const auto drive_mode =
+      load_type == "force" ? SlsMechanics::Drive::force : SlsMechanics::Drive::deflection;
+  const MuscleSummary muscle = build_muscle(system, root.at("muscle"), drive_mode, signals);
+  auto& drive = system.add(JouleDrive::from_config(kDrive, root.at("drive"), signals));
+  if (drive.needs_resistance()) system.connect(drive, "heater_resistance", "muscle.resistance");
+  build_load(system, load, load_type, muscle, signals);
+
+  try {
+    system.assemble();
+  } catch (const std::logic_error& error) {
+    root.fail(std::string("the scenario does not assemble: ") + error.what());
+  }
+  scenario.solver = read_solver(root, system);
+  root.reject_unknown_keys();
+  scenario.resolved_yaml = root.resolved_yaml();
+  return scenario;
+}
+
+Scenario load_scenario(const std::string& file, const std::vector<std::string>& overrides,
+                       std::shared_ptr<const UnitSystem> units) {
+  Scenario scenario = build_scenario(ConfigNode::load_file(file, overrides, std::move(units)));
+  scenario.source = file;
+  return scenario;
+}
+
+}  // namespace tcpmsim

@@ -1,0 +1,56 @@
+#include "sim/sparsity.h"
+
+#include <algorithm>
+
+namespace tcpmsim {
+
+int SparsityPattern::non_zeros() const {
+  int count = 0;
+  for (const auto& rows : rows_of_column) count += static_cast<int>(rows.size());
+  return count;
+}
+
+int SparsityPattern::upper_bandwidth() const {
+  int upper = 0;
+  for (int column = 0; column < size; ++column) {
+    for (int row : rows_of_column[static_cast<std::size_t>(column)]) {
+      upper = std::max(upper, column - row);
+    }
+  }
+  return upper;
+}
+
+int SparsityPattern::lower_bandwidth() const {
+  int lower = 0;
+  for (int column = 0; column < size; ++column) {
+    for (int row : rows_of_column[static_cast<std::size_t>(column)]) {
+      lower = std::max(lower, row - column);
+    }
+  }
+  return lower;
+}
+
+std::vector<std::vector<int>> SparsityPattern::column_groups() const {
+  // Greedy colouring in column order; good enough for the chain and block structures here.
+  std::vector<std::vector<int>> groups;
+  std::vector<std::vector<char>> rows_used;
+  for (int column = 0; column < size; ++column) {
+    const auto& rows = rows_of_column[static_cast<std::size_t>(column)];
+    std::size_t group = 0;
+    for (; group < groups.size(); ++group) {
+      const auto& used = rows_used[group];
+      const bool clash =
+          std::any_of(rows.begin(), rows.end(), [&](int row) { return used[row] != 0; });
+      if (!clash) break;
+    }
+    if (group == groups.size()) {
+      groups.emplace_back();
+      rows_used.emplace_back(static_cast<std::size_t>(size), 0);
+    }
+    groups[group].push_back(column);
+    for (int row : rows) rows_used[group][static_cast<std::size_t>(row)] = 1;
+  }
+  return groups;
+}
+
+}  // namespace tcpmsim
