@@ -13,6 +13,7 @@ double InductanceLaw::deflection(double inductance, double temperature) const {
 }
 
 InductanceLaw InductanceLaw::from_config(const ConfigNode& node) {
+  node.declare({"quantity", "lambda_l", "lambda_x", "lambda_T", "lambda_0", "reference_temperature"});
   InductanceLaw law;
   law.is_measure = node.choice_or("quantity", {"inductance", "measure"}, "inductance") == "measure";
   const char* per_length = law.is_measure ? "m" : "H*m";
@@ -41,6 +42,8 @@ ResistanceLaw ResistanceLaw::thermal(double resistance, double temperature_coeff
 
 ResistanceLaw ResistanceLaw::from_config(const ConfigNode& node) {
   if (node.is_scalar()) return {0.0, 0.0, node.as_quantity("ohm", ValueCheck::positive()), 273.15};
+  node.declare({"form", "rho_x", "rho_T", "rho_0", "reference_temperature", "resistance",
+                "temperature_coefficient", "strain_coefficient"});
   const std::string form = node.choice("form", {"linear", "thermal"});
   if (form == "thermal") {
     return thermal(node.quantity("resistance", "ohm", ValueCheck::positive()),

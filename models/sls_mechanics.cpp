@@ -6,6 +6,7 @@ SlsMechanics::SlsMechanics(std::string group, SlsParameters parameters, Drive dr
     : Component(std::move(group), "sls_mechanics"), parameters_(parameters), drive_(drive) {}
 
 SlsParameters SlsMechanics::parameters_from_config(const ConfigNode& node) {
+  node.declare({"k1", "k2", "damping", "force_offset"});
   SlsParameters p;
   p.k1 = node.quantity("k1", "N/m", ValueCheck::positive());
   p.k2 = node.quantity("k2", "N/m", ValueCheck::non_negative());
@@ -54,6 +55,16 @@ void SlsMechanics::compute_outputs(const Evaluation& evaluation) const {
 void SlsMechanics::compute_derivatives(const Evaluation& evaluation, double* derivatives) const {
   const double x = deflection(evaluation);
   set_derivative(derivatives, 0, parameters_.k2 / parameters_.damping * (x - state(evaluation, 0)));
+}
+
+}  // namespace tcpmsim
+
+namespace tcpmsim {
+
+Dependencies SlsMechanics::derivative_dependencies(int) const {
+  // With x imposed the dashpot does not see the thermal force; with F imposed, x (7.5) does.
+  if (drive_ == Drive::deflection) return {{0}, {kImposed}};
+  return {{0}, {kThermalForce, kImposed}};
 }
 
 }  // namespace tcpmsim

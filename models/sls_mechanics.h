@@ -45,6 +45,7 @@ class SlsMechanics final : public Component {
   void initialize(const Evaluation& evaluation, std::span<double> own_state) const override;
   void compute_outputs(const Evaluation& evaluation) const override;
   void compute_derivatives(const Evaluation& evaluation, double* derivatives) const override;
+  Dependencies derivative_dependencies(int state_index) const override;
 
   const SlsParameters& parameters() const { return parameters_; }
 

@@ -10,6 +10,7 @@ PhysicalThermalForce::PhysicalThermalForce(std::string group, double force_per_k
 
 std::unique_ptr<PhysicalThermalForce> PhysicalThermalForce::from_config(const std::string& group,
                                                                         const ConfigNode& node) {
+  node.declare({"form", "force_per_kelvin", "reference_temperature"});
   return std::make_unique<PhysicalThermalForce>(
       group, node.quantity("force_per_kelvin", "N/K"),
       node.quantity("reference_temperature", "K", ValueCheck::positive()));
@@ -26,6 +27,8 @@ ReducedThermalForce::ReducedThermalForce(std::string group,
 
 std::unique_ptr<ReducedThermalForce> ReducedThermalForce::from_config(const std::string& group,
                                                                       const ConfigNode& node) {
+  node.declare({"form", "kappa_P", "kappa_c", "ambient_temperature", "force_per_kelvin",
+                "initial_thermal_force"});
   ReducedThermalForceParameters p;
   p.heating_gain = node.quantity("kappa_P", "N/J");
   p.cooling_rate = node.quantity("kappa_c", "1/s", ValueCheck::positive());

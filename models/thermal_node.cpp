@@ -17,6 +17,8 @@ ThermalNode::ThermalNode(std::string group, ThermalNodeParameters parameters,
 std::unique_ptr<ThermalNode> ThermalNode::from_config(const std::string& group,
                                                       const ConfigNode& node,
                                                       const SignalContext& signals) {
+  node.declare({"heat_capacity", "conductance", "ambient_temperature", "heating_efficiency",
+                "radiation", "initial_temperature", "energy_accounting"});
   ThermalNodeParameters p;
   p.heat_capacity = node.quantity("heat_capacity", "J/K", ValueCheck::positive());
   p.conductance = node.quantity("conductance", "W/K", ValueCheck::non_negative());

@@ -61,6 +61,32 @@ double time_margin(double t) {
   return 64.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t));
 }
 
+std::string format_number(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+// Output times t0 + k * interval, then t_end if that is off the grid.
+class OutputGrid {
+ public:
+  OutputGrid(double t0, double t_end, double interval) : t0_(t0), t_end_(t_end), interval_(interval) {
+    const auto last_on_grid = static_cast<long>(std::floor((t_end - t0) / interval * (1.0 + 1e-12)));
+    const double last = t0 + static_cast<double>(last_on_grid) * interval;
+    const bool end_on_grid = std::abs(last - t_end) <= 1e-9 * std::max(1.0, std::abs(t_end));
+    count_ = last_on_grid + (end_on_grid ? 1 : 2);
+  }
+  bool done() const { return index_ >= count_; }
+  void advance() { ++index_; }
+  double time() const {
+    return index_ + 1 == count_ ? t_end_ : t0_ + static_cast<double>(index_) * interval_;
+  }
+
+ private:
+  double t0_, t_end_, interval_;
+  long count_ = 0, index_ = 0;
+};
+
 constexpr int kUnrecoverable = -1;
 constexpr int kRecoverable = 1;
 
@@ -76,7 +102,7 @@ int right_hand_side(realtype t, N_Vector y, N_Vector ydot, void* user_data) {
   for (int i = 0; i < size; ++i) {
     if (!std::isfinite(state[i])) {
       cv.rhs_problem = "state " + cv.system->states()[static_cast<std::size_t>(i)].name +
-                       " is not finite at t = " + std::to_string(t) + " s";
+                       " is not finite at t = " + format_number(t) + " s";
       return kUnrecoverable;
     }
   }
@@ -85,8 +111,7 @@ int right_hand_side(realtype t, N_Vector y, N_Vector ydot, void* user_data) {
     if (!std::isfinite(derivatives[i])) {
       const auto& info = cv.system->states()[static_cast<std::size_t>(i)];
       cv.rhs_problem = "the derivative of " + info.name + " (component " + info.owner->group() +
-                       "/" + info.owner->kind() + ") is not finite at t = " + std::to_string(t) +
-                       " s";
+                       "/" + info.owner->kind() + ") is not finite at t = " + format_number(t) + " s";
       return kRecoverable;
     }
   }
@@ -165,6 +190,7 @@ Integrator::Integrator(System& system, SolverSettings settings)
   cv.relative_tolerance = settings_.relative_tolerance;
   check(SUNContext_Create(nullptr, &cv.context), "SUNContext_Create");
   cv.state = N_VNew_Serial(size, cv.context);
+  N_VEnableFusedOps_Serial(cv.state, SUNTRUE);  // fewer vector-op calls per step
   cv.scratch = N_VNew_Serial(size, cv.context);
   cv.tolerances = N_VNew_Serial(size, cv.context);
   double* tolerances = N_VGetArrayPointer(cv.tolerances);
@@ -214,92 +240,82 @@ void Integrator::attach_linear_solver() {
   }
 }
 
+void Integrator::accumulate_statistics() {
+  auto& cv = *cvode_;
+  auto add = [](auto getter, void* memory, long& total) {
+    long value = 0;
+    getter(memory, &value);
+    total += value;
+  };
+  add(CVodeGetNumSteps, cv.memory, statistics_.steps);
+  add(CVodeGetNumRhsEvals, cv.memory, statistics_.rhs_evaluations);
+  add(CVodeGetNumLinSolvSetups, cv.memory, statistics_.linear_solver_setups);
+  add(CVodeGetNumErrTestFails, cv.memory, statistics_.error_test_failures);
+  add(CVodeGetNumNonlinSolvIters, cv.memory, statistics_.nonlinear_iterations);
+  add(CVodeGetNumNonlinSolvConvFails, cv.memory, statistics_.nonlinear_convergence_failures);
+  add(CVodeGetNumJacEvals, cv.memory, statistics_.jacobian_evaluations);
+  add(CVodeGetNumLinRhsEvals, cv.memory, statistics_.rhs_evaluations_for_jacobian);
+}
+
+SolverFailure Integrator::failure(const std::string& headline) {
+  auto& cv = *cvode_;
+  const int size = system_.state_size();
+  double now = 0.0;
+  CVodeGetCurrentTime(cv.memory, &now);
+  accumulate_statistics();
+  std::ostringstream message;
+  message << headline << " at t = " << now << " s";
+  if (!cv.rhs_problem.empty()) message << ": " << cv.rhs_problem;
+  if (!cv.last_message.empty()) message << "\n  CVODE said: " << cv.last_message;
+  // Rank the states by weighted local error, |e_i| * w_i, the quantity CVODE's test uses.
+  N_Vector weights = N_VClone(cv.scratch);
+  N_Vector errors = N_VClone(cv.scratch);
+  CVodeGetErrWeights(cv.memory, weights);
+  CVodeGetEstLocalErrors(cv.memory, errors);
+  std::vector<std::pair<double, int>> ranked;
+  for (int i = 0; i < size; ++i) {
+    ranked.emplace_back(std::abs(N_VGetArrayPointer(errors)[i] * N_VGetArrayPointer(weights)[i]), i);
+  }
+  N_VDestroy(weights);
+  N_VDestroy(errors);
+  std::sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  const double* state = N_VGetArrayPointer(cv.state);
+  message << "\n  state entries with the largest weighted local error:";
+  for (std::size_t k = 0; k < std::min<std::size_t>(3, ranked.size()); ++k) {
+    const auto& info = system_.states()[static_cast<std::size_t>(ranked[k].second)];
+    message << "\n    " << info.name << " = " << state[ranked[k].second] << " " << info.unit
+            << " (weighted error " << ranked[k].first << ", component " << info.owner->group() << "/"
+            << info.owner->kind() << ")";
+  }
+  return SolverFailure(message.str(), now, statistics_);
+}
+
+void Integrator::start_segment(double start, bool first) {
+  auto& cv = *cvode_;
+  if (first) {
+    check(CVodeInit(cv.memory, right_hand_side, start, cv.state), "CVodeInit");
+    check(CVodeSetUserData(cv.memory, cvode_.get()), "CVodeSetUserData");
+    check(CVodeSetErrHandlerFn(cv.memory, capture_error, cvode_.get()), "CVodeSetErrHandlerFn");
+    check(CVodeSVtolerances(cv.memory, settings_.relative_tolerance, cv.tolerances), "CVodeSVtolerances");
+    attach_linear_solver();
+    check(CVodeSetMaxNumSteps(cv.memory, -1), "CVodeSetMaxNumSteps");
+    if (settings_.max_step > 0) check(CVodeSetMaxStep(cv.memory, settings_.max_step), "CVodeSetMaxStep");
+  } else {
+    accumulate_statistics();  // CVodeReInit zeroes CVODE's counters
+    check(CVodeReInit(cv.memory, start, cv.state), "CVodeReInit");
+  }
+  if (settings_.initial_step > 0) check(CVodeSetInitStep(cv.memory, settings_.initial_step), "CVodeSetInitStep");
+}
+
 SolverStatistics Integrator::run(double t0, double t_end, double output_interval, OutputSink& sink,
                                  const Progress& progress) {
   auto& cv = *cvode_;
-  const int size = system_.state_size();
   double* state = N_VGetArrayPointer(cv.state);
   system_.initialize(t0, state);
-
-  SolverStatistics totals;
-  auto accumulate = [&] {
-    long value = 0;
-    CVodeGetNumSteps(cv.memory, &value), totals.steps += value;
-    CVodeGetNumRhsEvals(cv.memory, &value), totals.rhs_evaluations += value;
-    CVodeGetNumLinSolvSetups(cv.memory, &value), totals.linear_solver_setups += value;
-    CVodeGetNumErrTestFails(cv.memory, &value), totals.error_test_failures += value;
-    CVodeGetNumNonlinSolvIters(cv.memory, &value), totals.nonlinear_iterations += value;
-    CVodeGetNumNonlinSolvConvFails(cv.memory, &value),
-        totals.nonlinear_convergence_failures += value;
-    CVodeGetNumJacEvals(cv.memory, &value), totals.jacobian_evaluations += value;
-    CVodeGetNumLinRhsEvals(cv.memory, &value), totals.rhs_evaluations_for_jacobian += value;
-  };
-
-  auto fail = [&](int flag) -> SolverFailure {
-    double now = t0;
-    CVodeGetCurrentTime(cv.memory, &now);
-    accumulate();
-    std::ostringstream message;
-    message << "CVODE failed with " << CVodeGetReturnFlagName(flag) << " at t = " << now << " s";
-    if (!cv.rhs_problem.empty()) message << ": " << cv.rhs_problem;
-    if (!cv.last_message.empty()) message << "\n  CVODE said: " << cv.last_message;
-    CVodeGetErrWeights(cv.memory, cv.scratch);
-    std::vector<double> weighted(static_cast<std::size_t>(size));
-    const double* weights = N_VGetArrayPointer(cv.scratch);
-    N_Vector local_errors = N_VClone(cv.scratch);
-    CVodeGetEstLocalErrors(cv.memory, local_errors);
-    const double* errors = N_VGetArrayPointer(local_errors);
-    for (int i = 0; i < size; ++i)
-      weighted[static_cast<std::size_t>(i)] = std::abs(errors[i] * weights[i]);
-    N_VDestroy(local_errors);
-    std::vector<int> order(static_cast<std::size_t>(size));
-    std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(), [&](int a, int b) {
-      return weighted[static_cast<std::size_t>(a)] > weighted[static_cast<std::size_t>(b)];
-    });
-    message << "\n  state entries with the largest weighted local error:";
-    for (std::size_t k = 0; k < std::min<std::size_t>(3, order.size()); ++k) {
-      const auto i = static_cast<std::size_t>(order[k]);
-      message << "\n    " << system_.states()[i].name << " = " << state[order[k]] << " "
-              << system_.states()[i].unit << " (weighted error " << weighted[i] << ")";
-    }
-    return SolverFailure(message.str(), now, totals);
-  };
-
-  bool initialized = false;
-  auto start_segment = [&](double t_start) {
-    if (!initialized) {
-      check(CVodeInit(cv.memory, right_hand_side, t_start, cv.state), "CVodeInit");
-      check(CVodeSetUserData(cv.memory, cvode_.get()), "CVodeSetUserData");
-      check(CVodeSetErrHandlerFn(cv.memory, capture_error, cvode_.get()), "CVodeSetErrHandlerFn");
-      check(CVodeSVtolerances(cv.memory, settings_.relative_tolerance, cv.tolerances),
-            "CVodeSVtolerances");
-      attach_linear_solver();
-      check(CVodeSetMaxNumSteps(cv.memory, -1), "CVodeSetMaxNumSteps");
-      if (settings_.max_step > 0)
-        check(CVodeSetMaxStep(cv.memory, settings_.max_step), "CVodeSetMaxStep");
-      initialized = true;
-    } else {
-      accumulate();
-      check(CVodeReInit(cv.memory, t_start, cv.state), "CVodeReInit");
-    }
-    if (settings_.initial_step > 0)
-      check(CVodeSetInitStep(cv.memory, settings_.initial_step), "CVodeSetInitStep");
-  };
-
-  // Output grid: t0 + k * interval for k = 0..last_on_grid, then t_end if it is off the grid.
-  const double span = t_end - t0;
-  const long last_on_grid = static_cast<long>(std::floor(span / output_interval * (1.0 + 1e-12)));
-  const bool end_on_grid = std::abs(t0 + static_cast<double>(last_on_grid) * output_interval -
-                                    t_end) <= 1e-9 * std::max(1.0, std::abs(t_end));
-  const long sample_count = last_on_grid + (end_on_grid ? 1 : 2);
-  auto sample_time = [&](long k) {
-    return k > last_on_grid || (k == last_on_grid && end_on_grid)
-               ? t_end
-               : t0 + static_cast<double>(k) * output_interval;
-  };
-  long sample = 0;
+  statistics_ = {};
+  OutputGrid grid(t0, t_end, output_interval);
   long steps_taken = 0;
+  int collapsed_steps = 0;
 
   double t = t0;
   while (t < t_end) {
@@ -307,45 +323,50 @@ SolverStatistics Integrator::run(double t0, double t_end, double output_interval
     // shifted pieces may report an instant that is t itself after rounding.
     const double margin = time_margin(t);
     double stop = system_.next_breakpoint_after(t);
-    while (stop <= t + 2.0 * margin)
-      stop = system_.next_breakpoint_after(std::max(stop, t + 2.0 * margin));
+    while (stop <= t + 2.0 * margin) stop = system_.next_breakpoint_after(std::max(stop, t + 2.0 * margin));
     stop = std::min(stop, t_end);
     const bool last_segment = stop >= t_end;
-    start_segment(t);
+    start_segment(t, t == t0);
     check(CVodeSetStopTime(cv.memory, stop), "CVodeSetStopTime");
     cv.segment_start = t + margin;
     cv.segment_end = stop - time_margin(stop);
-    ++totals.segments;
+    ++statistics_.segments;
     double reached = t;
     while (reached < stop) {
       cv.rhs_problem.clear();
       const int flag = CVode(cv.memory, stop, cv.state, &reached, CV_ONE_STEP);
-      if (flag < 0) throw fail(flag);
+      if (flag < 0) throw failure(std::string("CVODE failed with ") + CVodeGetReturnFlagName(flag));
       if (flag == CV_TSTOP_RETURN) reached = stop;
       if (++steps_taken > settings_.max_steps) {
-        accumulate();
-        throw SolverFailure("more than " + std::to_string(settings_.max_steps) +
-                                " solver steps; raise solver.max_steps if this is expected",
-                            reached, totals);
+        throw failure("more than " + std::to_string(settings_.max_steps) +
+                      " solver steps (raise solver.max_steps if this is expected)");
+      }
+      // A step size shrinking to rounding level without an error means the solution is
+      // running into a singularity it can neither pass nor reject: stop and say where.
+      double last_step = 0.0;
+      CVodeGetLastStep(cv.memory, &last_step);
+      collapsed_steps = last_step < 1e3 * time_margin(reached) ? collapsed_steps + 1 : 0;
+      if (collapsed_steps > 100) {
+        throw failure("CVODE stalled (the step size collapsed to " + format_number(last_step) + " s)");
       }
       // Interpolate every output time this step covered; a time equal to a breakpoint belongs
       // to the next segment (outputs are right-continuous), except the final time.
-      for (; sample < sample_count; ++sample) {
-        const double when = sample_time(sample);
+      for (; !grid.done(); grid.advance()) {
+        const double when = grid.time();
         if (when > reached || (when >= stop && !last_segment)) break;
         check(CVodeGetDky(cv.memory, when, 0, cv.scratch), "CVodeGetDky");
         system_.evaluate_outputs(when, cv.signal_time(when), N_VGetArrayPointer(cv.scratch));
         sink.record(when, system_.signals());
-        ++totals.output_samples;
+        ++statistics_.output_samples;
       }
       if (progress) progress(reached, steps_taken);
     }
     t = stop;
     if (t < t_end) system_.at_breakpoint(t, t - time_margin(t), state);
   }
-  accumulate();
-  final_state_.assign(state, state + size);
-  return totals;
+  accumulate_statistics();
+  final_state_.assign(state, state + system_.state_size());
+  return statistics_;
 }
 
 }  // namespace tcpmsim

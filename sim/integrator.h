@@ -80,11 +80,15 @@ class Integrator {
 
  private:
   void attach_linear_solver();
+  void start_segment(double start, bool first);
+  void accumulate_statistics();
+  SolverFailure failure(const std::string& headline);
 
   std::unique_ptr<detail::CvodeHandles> cvode_;
   System& system_;
   SolverSettings settings_;
   std::vector<double> final_state_;
+  SolverStatistics statistics_;
 };
 
 }  // namespace tcpmsim

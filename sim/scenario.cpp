@@ -22,7 +22,9 @@ constexpr const char* kLoad = "load";
 
 ScenarioSettings read_settings(const ConfigNode& root) {
   ScenarioSettings settings;
+  root.declare({"scenario", "output", "solver", "muscle", "drive", "load"});
   const ConfigNode scenario = root.at("scenario");
+  scenario.declare({"name", "description", "duration", "seed"});
   settings.name = scenario.text("name");
   if (settings.name.empty() || settings.name.find_first_of("/\\ ") != std::string::npos) {
     scenario.at("name").fail(
@@ -48,6 +50,7 @@ struct MuscleSummary {
 
 MuscleSummary build_thermal(System& system, const ConfigNode& muscle,
                             const SignalContext& signals) {
+  muscle.declare({"thermal", "thermal_force", "mechanics", "resistance", "inductance"});
   MuscleSummary summary;
   const ConfigNode thermal_force = muscle.at("thermal_force");
   const std::string form = thermal_force.choice("form", {"physical", "reduced"});
@@ -122,6 +125,8 @@ void add_sensor(System& system, const ConfigNode& load, const std::string& name,
 
 void build_load(System& system, const ConfigNode& load, const std::string& type,
                 const MuscleSummary& muscle, const SignalContext& signals) {
+  load.declare({"type", "deflection", "force", "mass", "gravity", "damping", "initial_deflection",
+                "initial_velocity", "load_cell_resolution", "position_resolution"});
   if (type == "deflection") {
     const ConfigNode signal_node = load.at("deflection");
     auto signal = read_signal(signal_node, "m", signals);
@@ -180,6 +185,7 @@ SolverSettings read_solver(const ConfigNode& root, const System& system) {
       settings.absolute_tolerances.push_back(state.absolute_tolerance);
     return settings;
   }
+  solver->declare({"rtol", "atol", "linear_solver", "max_step", "initial_step", "max_steps"});
   settings.relative_tolerance =
       solver->number_or("rtol", settings.relative_tolerance, ValueCheck::between(1e-14, 0.1));
   const std::string kind = solver->choice_or("linear_solver", {"dense", "band", "klu"}, "dense");

@@ -17,6 +17,19 @@ MultisineSignal::MultisineSignal(double offset, std::vector<double> amplitudes,
       frequencies_.empty()) {
     throw std::invalid_argument("multisine: amplitudes, frequencies and phases must match");
   }
+  const std::size_t count = frequencies_.size();
+  if (count > 2) {
+    const double spacing = (frequencies_.back() - frequencies_.front()) / static_cast<double>(count - 1);
+    equally_spaced_ = spacing > 0.0;
+    for (std::size_t i = 0; i < count && equally_spaced_; ++i) {
+      const double expected = frequencies_.front() + spacing * static_cast<double>(i);
+      equally_spaced_ = std::abs(frequencies_[i] - expected) <= 1e-12 * frequencies_.back();
+    }
+  }
+  for (double phase : phases_) {
+    cos_phase_.push_back(std::cos(phase));
+    sin_phase_.push_back(std::sin(phase));
+  }
 }
 
 std::vector<double> MultisineSignal::equally_spaced(int components, double f_low, double f_high) {
@@ -40,6 +53,23 @@ MultisineSignal MultisineSignal::schroeder(int components, double f_low, double 
 }
 
 double MultisineSignal::value(double time) const {
+  if (equally_spaced_) {
+    // sin(a + k b + phi_k) = Im(e^{i(a + k b)}) cos(phi_k) + Re(e^{i(a + k b)}) sin(phi_k),
+    // with e^{i(a + k b)} advanced by one rotation per component.
+    const double spacing = (frequencies_.back() - frequencies_.front()) / static_cast<double>(frequencies_.size() - 1);
+    const double a = 2.0 * std::numbers::pi * frequencies_.front() * time;
+    const double b = 2.0 * std::numbers::pi * spacing * time;
+    double re = std::cos(a), im = std::sin(a);
+    const double step_re = std::cos(b), step_im = std::sin(b);
+    double sum = offset_;
+    for (std::size_t i = 0; i < amplitudes_.size(); ++i) {
+      sum += amplitudes_[i] * (im * cos_phase_[i] + re * sin_phase_[i]);
+      const double next_re = re * step_re - im * step_im;
+      im = re * step_im + im * step_re;
+      re = next_re;
+    }
+    return sum;
+  }
   double sum = offset_;
   for (std::size_t i = 0; i < amplitudes_.size(); ++i) {
     sum += amplitudes_[i] * std::sin(2.0 * std::numbers::pi * frequencies_[i] * time + phases_[i]);
@@ -47,26 +77,45 @@ double MultisineSignal::value(double time) const {
   return sum;
 }
 
-namespace {
-// Samples fine enough that an extremum is missed by under 1e-5 of the amplitude.
-std::vector<double> sample_grid(double begin, double end, double highest_frequency) {
-  const double step = 1.0 / (1000.0 * std::max(highest_frequency, 1e-12));
-  const auto count = static_cast<std::size_t>(std::ceil((end - begin) / step)) + 1;
-  std::vector<double> times(count);
-  for (std::size_t k = 0; k < count; ++k) {
-    times[k] = std::min(end, begin + static_cast<double>(k) * step);
+double MultisineSignal::slope(double time) const {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < amplitudes_.size(); ++i) {
+    const double omega = 2.0 * std::numbers::pi * frequencies_[i];
+    sum += amplitudes_[i] * omega * std::cos(omega * time + phases_[i]);
   }
-  return times;
+  return sum;
 }
-}  // namespace
 
 std::pair<double, double> MultisineSignal::range(double begin, double end) const {
-  const double highest = *std::max_element(frequencies_.begin(), frequencies_.end());
-  double low = value(begin), high = low;
-  for (double time : sample_grid(begin, end, highest)) {
-    const double v = value(time);
-    low = std::min(low, v);
-    high = std::max(high, v);
+  // Every interior extremum is a zero of the slope. Sampling the slope 16 times per period of
+  // the fastest component brackets its sign changes; bisection then pins each extremum down
+  // to rounding. (Two extrema closer than 1/16 period would be a flat wiggle, whose value
+  // differs negligibly from its neighbours'.)
+  double low = std::min(value(begin), value(end));
+  double high = std::max(value(begin), value(end));
+  const double fastest = *std::max_element(frequencies_.begin(), frequencies_.end());
+  const auto intervals = static_cast<long>(std::ceil((end - begin) * fastest * 16.0)) + 1;
+  const double step = (end - begin) / static_cast<double>(intervals);
+  double left = begin, left_slope = slope(begin);
+  for (long k = 1; k <= intervals; ++k) {
+    const double right = k == intervals ? end : begin + static_cast<double>(k) * step;
+    const double right_slope = slope(right);
+    if ((left_slope > 0.0) != (right_slope > 0.0)) {
+      double a = left, b = right, slope_a = left_slope;
+      for (int iteration = 0; iteration < 60 && b - a > 1e-12 * std::max(1.0, std::abs(b)); ++iteration) {
+        const double middle = 0.5 * (a + b);
+        const double slope_middle = slope(middle);
+        if ((slope_middle > 0.0) == (slope_a > 0.0)) {
+          a = middle, slope_a = slope_middle;
+        } else {
+          b = middle;
+        }
+      }
+      const double extremum = value(0.5 * (a + b));
+      low = std::min(low, extremum);
+      high = std::max(high, extremum);
+    }
+    left = right, left_slope = right_slope;
   }
   return {low, high};
 }
@@ -86,15 +135,17 @@ MultisineSignal MultisineSignal::with_equal_amplitudes(double offset, double amp
 }
 
 double MultisineSignal::crest_factor(double duration) const {
-  const double highest = *std::max_element(frequencies_.begin(), frequencies_.end());
-  double peak = 0.0, sum_of_squares = 0.0;
-  const auto times = sample_grid(0.0, duration, highest);
-  for (double time : times) {
-    const double deviation = value(time) - offset_;
-    peak = std::max(peak, std::abs(deviation));
+  // Peak from the exact range; rms on a grid of 64 samples per fastest period.
+  const auto [low, high] = range(0.0, duration);
+  const double peak = std::max(high - offset_, offset_ - low);
+  const double fastest = *std::max_element(frequencies_.begin(), frequencies_.end());
+  const auto samples = static_cast<long>(std::ceil(duration * fastest * 64.0)) + 1;
+  double sum_of_squares = 0.0;
+  for (long k = 0; k < samples; ++k) {
+    const double deviation = value(duration * static_cast<double>(k) / static_cast<double>(samples)) - offset_;
     sum_of_squares += deviation * deviation;
   }
-  return peak / std::sqrt(sum_of_squares / static_cast<double>(times.size()));
+  return peak / std::sqrt(sum_of_squares / static_cast<double>(samples));
 }
 
 SignalDescription MultisineSignal::describe() const {

@@ -26,6 +26,7 @@ class MultisineSignal final : public Signal {
   MultisineSignal with_equal_amplitudes(double offset, double amplitude) const;
 
   double value(double time) const override;
+  double slope(double time) const;
   SignalDescription describe() const override;
   std::pair<double, double> range(double begin, double end) const override;
   // max |m - a0| / rms(m - a0) over [0, duration]
@@ -34,6 +35,10 @@ class MultisineSignal final : public Signal {
  private:
   double offset_;
   std::vector<double> amplitudes_, frequencies_, phases_;
+  // Equally spaced frequencies (the thesis' construction) allow evaluating all components with
+  // two sin/cos pairs and a rotation recurrence instead of one sin per component.
+  bool equally_spaced_ = false;
+  std::vector<double> cos_phase_, sin_phase_;
 };
 
 }  // namespace tcpmsim

@@ -295,6 +295,11 @@ bool ConfigNode::has(std::string_view key) const {
   return node.IsMap() && node[std::string(key)].IsDefined();
 }
 
+void ConfigNode::declare(std::initializer_list<std::string_view> keys) const {
+  auto& known = document_->known_keys[path_];
+  for (const auto key : keys) known.insert(std::string(key));
+}
+
 void ConfigNode::fail_missing(std::string_view key) const {
   // A misspelt key is the usual reason a required one is missing: point at it.
   if (node_.IsMap()) {
@@ -302,6 +307,7 @@ void ConfigNode::fail_missing(std::string_view key) const {
     for (const auto& entry : node_) {
       const std::string present = entry.first.as<std::string>();
       if (document_->consumed.count(join(path_, present))) continue;
+      if (document_->known_keys[path_].count(present)) continue;  // a legitimate other key
       if (!closest_match(present, expected).empty()) {
         const auto mark = entry.first.Mark();
         throw ConfigError(

@@ -57,6 +57,11 @@ class ConfigNode {
   bool is_sequence() const { return node_.IsSequence(); }
   bool is_scalar() const { return node_.IsScalar(); }
 
+  // Declares the keys this mapping may hold, before reading them. Then a missing required key
+  // is matched against misspellings among the *undeclared* keys only (k1 missing does not
+  // make k2 a typo), and unknown keys get suggestions from the full set.
+  void declare(std::initializer_list<std::string_view> keys) const;
+
   // Mapping access. `at` requires the key; `find` and `has` accept its absence.
   bool has(std::string_view key) const;
   ConfigNode at(std::string_view key) const;

@@ -39,7 +39,7 @@ H5::DataSet create_series(H5::Group& parent, const std::string& name, const std:
   H5::DSetCreatPropList properties;
   properties.setChunk(1, &chunk_size);
   properties.setShuffle();
-  properties.setDeflate(4);
+  properties.setDeflate(1);
   H5::DataSet dataset = parent.createDataSet(name, H5::PredType::NATIVE_DOUBLE, space, properties);
   write_text(dataset, "units", units);
   return dataset;

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package tcpmsim needs to build, test, run, plot and benchmark.
+# Debian is the only package source. Safe to re-run: it skips apt when all are present.
+set -euo pipefail
+
+packages=(
+  g++ make cmake git pkg-config            # toolchain; git stamps the commit into records
+  libsundials-dev                          # CVODE with dense, band and KLU linear solvers
+  libeigen3-dev                            # linear algebra
+  libyaml-cpp-dev                          # scenario files
+  libhdf5-dev                              # HDF5 C++ API for the records
+  libudunits2-dev                          # unit parsing and conversion at the config boundary
+  libcli11-dev                             # command line
+  catch2                                   # tests (v2)
+  python3 python3-h5py python3-numpy python3-matplotlib python3-scipy  # plots, benchmark
+)
+
+missing=()
+for package in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")
+done
+if ((${#missing[@]} == 0)); then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+sudo=()
+if ((EUID != 0)); then
+  command -v sudo >/dev/null || { echo "install-deps: run as root or install sudo" >&2; exit 1; }
+  sudo=(sudo)
+fi
+echo "install-deps: installing ${missing[*]}"
+"${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update -q
+"${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "${missing[@]}"

@@ -1,0 +1,44 @@
+// The right-hand side must not allocate: it runs thousands of times per simulated second.
+#include <catch2/catch.hpp>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include "tests/support/test_support.h"
+
+namespace {
+std::atomic<long> allocations{0};
+}
+
+// Counting replacements of the global allocation functions (this executable only).
+void* operator new(std::size_t size) {
+  ++allocations;
+  if (void* memory = std::malloc(size == 0 ? 1 : size)) return memory;
+  throw std::bad_alloc();
+}
+void operator delete(void* memory) noexcept { std::free(memory); }
+void operator delete(void* memory, std::size_t) noexcept { std::free(memory); }
+
+using namespace tcpmsim;
+using namespace tcpmsim::testing;
+
+TEST_CASE("Evaluating the right-hand side and the outputs allocates nothing") {
+  for (const char* config : {"configs/ch7_identification.yaml", "configs/ch6_static_staircase.yaml"}) {
+    Scenario scenario = load_scenario(source_path(config), {}, shared_units());
+    System& system = *scenario.system;
+    std::vector<double> state(static_cast<std::size_t>(system.state_size()));
+    std::vector<double> derivatives(state.size());
+    system.initialize(0.0, state.data());
+    const long before = allocations.load();
+    for (int k = 0; k < 1000; ++k) {
+      const double t = 0.37 * k;
+      system.evaluate_derivatives(t, t, state.data(), derivatives.data());
+      system.evaluate_outputs(t, t, state.data());
+      (void)system.next_breakpoint_after(t);
+    }
+    const long allocated = allocations.load() - before;
+    INFO(config);
+    CHECK(allocated == 0);
+  }
+}

@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# The command line: exit codes, located messages, and never a partial file that looks complete.
+# Usage: test_cli.sh TCPMSIM_BINARY SOURCE_DIR
+set -uo pipefail
+tcpmsim=$1
+source_dir=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+
+expect() {  # expect CODE DESCRIPTION -- COMMAND...
+  local code=$1 description=$2
+  shift 3
+  "$@" >"$work/out" 2>"$work/err"
+  local actual=$?
+  if [[ $actual != "$code" ]]; then
+    echo "FAIL: $description: exit $actual, expected $code"; cat "$work/out" "$work/err"; failures=$((failures + 1))
+  else
+    echo "ok: $description (exit $code)"
+  fi
+}
+contains() {  # contains FILE TEXT DESCRIPTION
+  if grep -qF -- "$2" "$1"; then echo "ok: $3"; else echo "FAIL: $3: '$2' not in:"; cat "$1"; failures=$((failures + 1)); fi
+}
+
+config="$source_dir/configs/ch7_identification.yaml"
+
+expect 0 "--version" -- "$tcpmsim" --version
+contains "$work/out" "tcpmsim 0.1.0" "version names the program"
+expect 0 "--help" -- "$tcpmsim" --help
+contains "$work/out" "run" "help lists the run command"
+expect 2 "no command is a usage error" -- "$tcpmsim"
+expect 2 "a missing scenario file is a usage error" -- "$tcpmsim" run "$work/none.yaml"
+expect 0 "validate a good scenario" -- "$tcpmsim" validate "$config"
+contains "$work/out" "output /muscle/force [N]" "validate lists the outputs"
+
+sed "s/^    k1: .*/    k1: 10.8e-3 N/" "$config" >"$work/bad.yaml"
+expect 3 "a wrong unit is a configuration error" -- "$tcpmsim" validate "$work/bad.yaml"
+contains "$work/err" "bad.yaml:" "the error names the file"
+contains "$work/err" "error: muscle.mechanics.k1: wrong unit in '10.8e-3 N': unit 'N' cannot be converted to 'N/m'" "the error names the key and the units"
+expect 3 "a bad --set is a configuration error" -- "$tcpmsim" validate "$config" --set "solver.rtol=-1"
+contains "$work/err" "command line (--set solver.rtol=-1): error: solver.rtol:" "the error points at the --set"
+
+expect 0 "run a short scenario" -- "$tcpmsim" run "$config" --set "scenario.duration=5 s" -o "$work/run.h5" --quiet
+[[ -s $work/run.h5 && ! -e $work/run.h5.partial ]] && echo "ok: complete record, no partial" || { echo "FAIL: record"; failures=$((failures + 1)); }
+
+expect 1 "a solver failure exits 1" -- "$tcpmsim" run "$config" --set "solver.max_steps=3" -o "$work/fail.h5"
+contains "$work/err" "more than 3 solver steps" "the failure is explained"
+[[ -s $work/fail.failed.h5 && ! -e $work/fail.h5 && ! -e $work/fail.h5.partial ]] \
+  && echo "ok: failed record kept as .failed.h5 only" || { echo "FAIL: failed record"; ls "$work"; failures=$((failures + 1)); }
+
+expect 4 "an unwritable output is an output error" -- "$tcpmsim" run "$config" --set "scenario.duration=1 s" -o /proc/tcpmsim/run.h5
+
+if /usr/bin/python3 -c "import h5py, matplotlib" 2>/dev/null; then
+  expect 0 "the plot tool reads the record" -- /usr/bin/python3 "$source_dir/tools/plot_traces.py" "$work/run.h5" -o "$work/run.png"
+  [[ -s $work/run.png ]] && echo "ok: plot written" || { echo "FAIL: no plot"; failures=$((failures + 1)); }
+fi
+
+echo "$failures failure(s)"
+exit $((failures > 0))

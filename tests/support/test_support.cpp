@@ -1,0 +1,123 @@
+#include "tests/support/test_support.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace tcpmsim::testing {
+
+MemorySink::MemorySink(const System& system) {
+  for (const auto& channel : system.channels()) {
+    layout_.emplace_back(channel.group + "/" + channel.name, channel.signal_index);
+    channels[channel.group + "/" + channel.name];
+  }
+}
+
+void MemorySink::record(double t, std::span<const double> signals) {
+  time.push_back(t);
+  for (const auto& [name, index] : layout_) {
+    channels[name].push_back(signals[static_cast<std::size_t>(index)]);
+  }
+}
+
+namespace {
+const std::vector<double>& lookup(const std::map<std::string, std::vector<double>>& channels,
+                                  const std::string& channel) {
+  const auto found = channels.find(channel);
+  if (found == channels.end()) throw std::out_of_range("no channel " + channel);
+  return found->second;
+}
+}  // namespace
+
+const std::vector<double>& MemorySink::operator[](const std::string& channel) const {
+  return lookup(channels, channel);
+}
+
+const std::vector<double>& Trace::operator[](const std::string& channel) const {
+  return lookup(channels, channel);
+}
+
+std::shared_ptr<const UnitSystem> shared_units() {
+  static const auto units = std::make_shared<const UnitSystem>();
+  return units;
+}
+
+Scenario scenario_from_text(const std::string& yaml, const std::vector<std::string>& overrides) {
+  return build_scenario(ConfigNode::load_text(yaml, "test.yaml", overrides, shared_units()));
+}
+
+Trace simulate(Scenario& scenario) {
+  MemorySink sink(*scenario.system);
+  Integrator integrator(*scenario.system, scenario.solver);
+  Trace trace;
+  trace.statistics =
+      integrator.run(0.0, scenario.settings.duration, scenario.settings.output_interval, sink);
+  trace.time = std::move(sink.time);
+  trace.channels = std::move(sink.channels);
+  return trace;
+}
+
+Trace simulate(const std::string& yaml, const std::vector<std::string>& overrides) {
+  Scenario scenario = scenario_from_text(yaml, overrides);
+  return simulate(scenario);
+}
+
+std::string physical_muscle_yaml() {
+  return R"(
+scenario: {name: test, duration: 100 s, seed: 1}
+output: {rate: 10 Hz}
+solver: {rtol: 1.0e-8}
+muscle:
+  thermal:
+    heat_capacity: 0.5 J/K
+    conductance: 0.05 W/K
+    ambient_temperature: 20 degC
+  thermal_force: {form: physical, force_per_kelvin: 2 mN/K, reference_temperature: 20 degC}
+  mechanics: {k1: 10 N/m, k2: 2.5 N/m, damping: 5 N*s/m, force_offset: 0.1 N}
+  resistance: 10 ohm
+  inductance: {quantity: measure, lambda_l: 2.81 mm, lambda_x: 28.8 mm, lambda_0: 0.433}
+drive: {mode: power, power: 0 W}
+load: {type: deflection, deflection: 20 mm}
+)";
+}
+
+std::string reduced_muscle_yaml() {
+  // kappa_P = phi_T / C = 0.002 / 0.5 = 4e-3 N/J, kappa_c = hA / C = 0.1 1/s
+  return R"(
+scenario: {name: test, duration: 100 s, seed: 1}
+output: {rate: 10 Hz}
+solver: {rtol: 1.0e-8}
+muscle:
+  thermal_force:
+    form: reduced
+    kappa_P: 4.0e-3 N/J
+    kappa_c: 0.1 1/s
+    ambient_temperature: 20 degC
+    force_per_kelvin: 2 mN/K
+  mechanics: {k1: 10 N/m, k2: 2.5 N/m, damping: 5 N*s/m, force_offset: 0.1 N}
+  resistance: 10 ohm
+  inductance: {quantity: measure, lambda_l: 2.81 mm, lambda_x: 28.8 mm, lambda_0: 0.433}
+drive: {mode: power, power: 0 W}
+load: {type: deflection, deflection: 20 mm}
+)";
+}
+
+std::string number(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", value);
+  return buffer;
+}
+
+double max_abs_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() != b.size()) throw std::invalid_argument("traces differ in length");
+  double worst = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(a[i] - b[i]));
+  return worst;
+}
+
+std::string source_path(const std::string& relative) {
+  return std::string(TCPMSIM_SOURCE_DIR) + "/" + relative;
+}
+
+}  // namespace tcpmsim::testing

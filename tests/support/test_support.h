@@ -1,0 +1,54 @@
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sim/integrator.h"
+#include "sim/scenario.h"
+
+namespace tcpmsim::testing {
+
+// Every output of a run, kept in memory.
+class MemorySink final : public OutputSink {
+ public:
+  explicit MemorySink(const System& system);
+  void record(double time, std::span<const double> signals) override;
+
+  std::vector<double> time;
+  // "group/name" -> samples
+  std::map<std::string, std::vector<double>> channels;
+  const std::vector<double>& operator[](const std::string& channel) const;
+
+ private:
+  std::vector<std::pair<std::string, int>> layout_;
+};
+
+struct Trace {
+  std::vector<double> time;
+  std::map<std::string, std::vector<double>> channels;
+  SolverStatistics statistics;
+  const std::vector<double>& operator[](const std::string& channel) const;
+};
+
+std::shared_ptr<const UnitSystem> shared_units();
+
+Scenario scenario_from_text(const std::string& yaml, const std::vector<std::string>& overrides = {});
+Trace simulate(Scenario& scenario);
+Trace simulate(const std::string& yaml, const std::vector<std::string>& overrides = {});
+
+// A small physical-form muscle: C = 0.5 J/K, hA = 0.05 W/K, phi_T = 2 mN/K, SLS with
+// k1 = 10 N/m, k2 = 2.5 N/m, c = 5 N s/m, no power, 20 mm imposed deflection, 100 s at 10 Hz.
+// Tests override what they study.
+std::string physical_muscle_yaml();
+// The same muscle in the reduced form (7.1) with the mapped kappa_P, kappa_c.
+std::string reduced_muscle_yaml();
+
+// %g formatting, for building --set overrides from numbers.
+std::string number(double value);
+
+double max_abs_difference(const std::vector<double>& a, const std::vector<double>& b);
+std::string source_path(const std::string& relative);
+
+}  // namespace tcpmsim::testing

@@ -1,0 +1,191 @@
+// The engine: assembly, ordering, breakpoints, sparsity, linear solvers, failures, determinism.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <limits>
+
+#include "tests/support/test_support.h"
+
+using namespace tcpmsim;
+using namespace tcpmsim::testing;
+
+namespace {
+
+// y' = -y / tau, or y' = y^2 (finite-time blow-up at 1/y0), or a NaN derivative after t_bad.
+class TestState final : public Component {
+ public:
+  enum class Law { decay, blowup, nan_after };
+  TestState(std::string group, Law law, double initial, double t_bad = 0.0)
+      : Component(std::move(group), "test_state"), law_(law), initial_(initial), t_bad_(t_bad) {}
+  std::vector<StateDeclaration> states() const override { return {{"value", "1", 1e-12}}; }
+  std::vector<OutputDeclaration> outputs() const override { return {{"value", "1"}}; }
+  void initialize(const Evaluation&, std::span<double> own) const override { own[0] = initial_; }
+  void compute_outputs(const Evaluation& e) const override { set_output(e, 0, state(e, 0)); }
+  void compute_derivatives(const Evaluation& e, double* d) const override {
+    const double y = state(e, 0);
+    switch (law_) {
+      case Law::decay: set_derivative(d, 0, -y); break;
+      case Law::blowup: set_derivative(d, 0, y * y); break;
+      case Law::nan_after:
+        set_derivative(d, 0, e.time > t_bad_ ? std::numeric_limits<double>::quiet_NaN() : -y);
+        break;
+    }
+  }
+
+ private:
+  Law law_;
+  double initial_, t_bad_;
+};
+
+// Reads an input (feedthrough or not) and republishes it.
+class Relay final : public Component {
+ public:
+  Relay(std::string group, bool feedthrough) : Component(std::move(group), "relay"), feedthrough_(feedthrough) {}
+  std::vector<OutputDeclaration> outputs() const override { return {{"value", "1"}}; }
+  std::vector<InputDeclaration> inputs() const override { return {{"in", feedthrough_}}; }
+  void compute_outputs(const Evaluation& e) const override { set_output(e, 0, input(e, 0)); }
+
+ private:
+  bool feedthrough_;
+};
+
+class Collector final : public OutputSink {
+ public:
+  void record(double time, std::span<const double> signals) override {
+    times.push_back(time);
+    values.push_back(signals[0]);
+  }
+  std::vector<double> times, values;
+};
+
+std::string failure_of(System& system, double t_end) {
+  system.assemble();
+  Collector sink;
+  Integrator integrator(system, {});
+  try {
+    integrator.run(0.0, t_end, 0.1, sink);
+  } catch (const SolverFailure& failure) {
+    return failure.what();
+  }
+  return "no failure";
+}
+
+}  // namespace
+
+TEST_CASE("An unconnected input, an unknown source and an algebraic loop are assembly errors") {
+  {
+    System system;
+    system.add(std::make_unique<Relay>("a", true));
+    CHECK_THROWS_WITH(system.assemble(), "a/relay input 'in' is not connected");
+  }
+  {
+    System system;
+    auto& relay = system.add(std::make_unique<Relay>("a", true));
+    system.connect(relay, "in", "nowhere.value");
+    CHECK_THROWS_WITH(system.assemble(), "no component publishes 'nowhere.value' (needed by a/relay)");
+  }
+  {
+    System system;
+    auto& a = system.add(std::make_unique<Relay>("a", true));
+    auto& b = system.add(std::make_unique<Relay>("b", true));
+    system.connect(a, "in", "b.value");
+    system.connect(b, "in", "a.value");
+    CHECK_THROWS_WITH(system.assemble(), "algebraic loop through direct-feedthrough inputs: a/relay b/relay");
+  }
+}
+
+TEST_CASE("Components are evaluated after the outputs they read through feedthrough") {
+  System system;
+  auto& last = system.add(std::make_unique<Relay>("c", true));  // added first, must run last
+  auto& middle = system.add(std::make_unique<Relay>("b", true));
+  system.add(std::make_unique<TestState>("a", TestState::Law::decay, 2.0));
+  system.connect(last, "in", "b.value");
+  system.connect(middle, "in", "a.value");
+  system.assemble();
+  std::vector<double> state(1);
+  system.initialize(0.0, state.data());
+  CHECK(system.signals()[static_cast<std::size_t>(system.signal_index("c.value"))] == 2.0);
+}
+
+TEST_CASE("A cycle that passes through a non-feedthrough input is not a loop") {
+  // The thermal node and a temperature-dependent drive: each reads the other.
+  CHECK_NOTHROW(scenario_from_text(physical_muscle_yaml(), {
+      "drive={mode: duty, supply_voltage: 7 V, series_resistance: 0.5 ohm, duty: 0.5}",
+      "muscle.resistance={form: thermal, resistance: 9 ohm, temperature_coefficient: 6.41e-3 1/K, "
+      "reference_temperature: 20 degC}"}));
+}
+
+TEST_CASE("The Jacobian pattern follows the wiring") {
+  Scenario scenario = scenario_from_text(physical_muscle_yaml());
+  const SparsityPattern pattern = scenario.system->jacobian_pattern();
+  // States: muscle.temperature (0), muscle.dashpot_extension (1). The dashpot does not depend
+  // on temperature at imposed deflection, and the temperature does not depend on the dashpot.
+  REQUIRE(pattern.size == 2);
+  CHECK(pattern.rows_of_column[0] == std::vector<int>{0});
+  CHECK(pattern.rows_of_column[1] == std::vector<int>{1});
+  CHECK(pattern.upper_bandwidth() == 0);
+  CHECK(pattern.lower_bandwidth() == 0);
+  CHECK(pattern.column_groups().size() == 1);
+  // Under an imposed force the deflection depends on F_T, so the dashpot row reads T.
+  Scenario force = scenario_from_text(physical_muscle_yaml(), {"load={type: force, force: 0.3 N}"});
+  const SparsityPattern coupled = force.system->jacobian_pattern();
+  CHECK(coupled.rows_of_column[0] == std::vector<int>{0, 1});
+}
+
+TEST_CASE("Dense, band and KLU linear solvers give the same trajectory") {
+  const std::string config = source_path("configs/ch7_identification.yaml");
+  auto run = [&](const std::string& solver) {
+    Scenario scenario = load_scenario(config, {"solver.linear_solver=" + solver, "solver.rtol=1e-8"}, shared_units());
+    return simulate(scenario);
+  };
+  const Trace dense = run("dense"), band = run("band"), klu = run("klu");
+  CHECK(max_abs_difference(dense["muscle/force"], band["muscle/force"]) < 1e-6);
+  CHECK(max_abs_difference(dense["muscle/force"], klu["muscle/force"]) < 1e-6);
+  CHECK(klu.statistics.jacobian_evaluations > 0);
+}
+
+TEST_CASE("Outputs are sampled on the uniform grid, including the end, without a solver stop per sample") {
+  const Trace trace = simulate(physical_muscle_yaml(), {"scenario.duration=10.05 s", "output.rate=10 Hz"});
+  REQUIRE(trace.time.size() == 102);  // 0, 0.1, ..., 10.0, and 10.05
+  CHECK(trace.time[37] == Approx(3.7).epsilon(1e-15));
+  CHECK(trace.time.back() == 10.05);
+  CHECK(trace.statistics.segments == 1);
+  CHECK(trace.statistics.steps < 100);  // far fewer steps than samples: interpolated outputs
+}
+
+TEST_CASE("The integrator stops at every breakpoint and counts one segment per stop") {
+  const Trace trace = simulate(physical_muscle_yaml(),
+                               {"drive.power={type: steps, initial: 0 W, times: [10 s, 20 s, 30.5 s], values: [1 W, 2 W, 0 W]}"});
+  CHECK(trace.statistics.segments == 4);
+}
+
+TEST_CASE("A non-finite derivative fails with the CVODE flag, the time and the component") {
+  System system;
+  system.add(std::make_unique<TestState>("test", TestState::Law::nan_after, 1.0, 0.5));
+  const std::string message = failure_of(system, 2.0);
+  CHECK_THAT(message, Catch::Matches("CVODE (failed with CV_[A-Z_]+|stalled .*) at t = 0\\.5(.|\n)*"));
+  CHECK_THAT(message, Catch::Contains("the derivative of test.value (component test/test_state) is not finite"));
+  CHECK_THAT(message, Catch::Contains("largest weighted local error"));
+}
+
+TEST_CASE("A solution that blows up fails naming the worst state entry") {
+  System system;
+  system.add(std::make_unique<TestState>("test", TestState::Law::blowup, 1.0));
+  const std::string message = failure_of(system, 2.0);  // y = 1/(1 - t) leaves at t = 1
+  CHECK_THAT(message, Catch::Matches("CVODE (failed with CV_[A-Z_]+|stalled .*) at t = 0\\.99(.|\n)*"));
+  CHECK_THAT(message, Catch::Contains("test.value = "));
+}
+
+TEST_CASE("The same configuration and seed give bit-identical traces; another seed does not") {
+  const std::string config = source_path("configs/ch7_identification.yaml");
+  auto run = [&](const std::string& seed) {
+    Scenario scenario = load_scenario(config, {"scenario.seed=" + seed}, shared_units());
+    return simulate(scenario);
+  };
+  const Trace first = run("5"), second = run("5"), other = run("6");
+  for (const auto& [name, values] : first.channels) {
+    INFO(name);
+    CHECK(values == second[name]);  // exact equality, not approximate
+  }
+  CHECK(first["drive/power"] != other["drive/power"]);
+}

@@ -1,0 +1,133 @@
+// The HDF5 record: layout, units, metadata, incremental writing and atomic completion.
+#include <catch2/catch.hpp>
+
+#include <H5Cpp.h>
+
+#include <filesystem>
+
+#include "sim/io/hdf5_recorder.h"
+#include "sim/run.h"
+#include "tcpmsim/version.h"
+#include "tests/support/test_support.h"
+
+using namespace tcpmsim;
+using namespace tcpmsim::testing;
+
+namespace {
+
+std::string temporary_path(const std::string& name) {
+  const auto directory = std::filesystem::temp_directory_path() / "tcpmsim_tests";
+  std::filesystem::create_directories(directory);
+  return (directory / name).string();
+}
+
+std::string text_attribute(const H5::H5Object& object, const std::string& name) {
+  const H5::Attribute attribute = object.openAttribute(name);
+  std::string value;
+  attribute.read(attribute.getStrType(), value);
+  return value;
+}
+
+std::vector<double> read_series(const H5::H5File& file, const std::string& path) {
+  const H5::DataSet dataset = file.openDataSet(path);
+  hsize_t size = 0;
+  dataset.getSpace().getSimpleExtentDims(&size);
+  std::vector<double> values(size);
+  dataset.read(values.data(), H5::PredType::NATIVE_DOUBLE);
+  return values;
+}
+
+template <typename T>
+T scalar_attribute(const H5::H5Object& object, const std::string& name, const H5::PredType& type) {
+  T value{};
+  object.openAttribute(name).read(type, &value);
+  return value;
+}
+
+}  // namespace
+
+TEST_CASE("The HDF5 record holds /time and one dataset per channel with units, identical to the run") {
+  const std::string config = source_path("configs/ch7_identification.yaml");
+  Scenario in_memory = load_scenario(config, {}, shared_units());
+  const Trace expected = simulate(in_memory);
+
+  Scenario scenario = load_scenario(config, {}, shared_units());
+  const std::string path = temporary_path("layout.h5");
+  const RunOutcome outcome = run_scenario(scenario, path);
+  REQUIRE(outcome.succeeded);
+  CHECK_FALSE(std::filesystem::exists(Hdf5Recorder::partial_path(path)));
+
+  const H5::H5File file(path, H5F_ACC_RDONLY);
+  CHECK(read_series(file, "/time") == expected.time);
+  CHECK(text_attribute(file.openDataSet("/time"), "units") == "s");
+  for (const auto& channel : scenario.system->channels()) {
+    const std::string name = channel.group + "/" + channel.name;
+    INFO(name);
+    const H5::DataSet dataset = file.openDataSet("/" + name);
+    CHECK(text_attribute(dataset, "units") == channel.unit);
+    CHECK(read_series(file, "/" + name) == expected[name]);  // bit for bit
+    // Chunked and compressed.
+    const H5::DSetCreatPropList properties = dataset.getCreatePlist();
+    CHECK(properties.getLayout() == H5D_CHUNKED);
+    CHECK(properties.getNfilters() == 2);  // shuffle + deflate
+  }
+  CHECK(text_attribute(file.openDataSet("/muscle/force"), "units") == "N");
+  CHECK(text_attribute(file.openDataSet("/load/deflection"), "units") == "m");
+
+  const H5::Group root = file.openGroup("/");
+  CHECK(text_attribute(root, "tcpmsim_version") == kVersion);
+  CHECK(text_attribute(root, "git_commit") == kGitCommit);
+  CHECK(text_attribute(root, "status") == "complete");
+  CHECK(text_attribute(root, "scenario") == "ch7_identification");
+  CHECK(scalar_attribute<std::uint64_t>(root, "seed", H5::PredType::NATIVE_UINT64) == 2019);
+  CHECK(scalar_attribute<std::int64_t>(root, "solver_steps", H5::PredType::NATIVE_INT64) == outcome.statistics.steps);
+  CHECK(scalar_attribute<std::int64_t>(root, "solver_rhs_evaluations", H5::PredType::NATIVE_INT64) ==
+        outcome.statistics.rhs_evaluations);
+  // The resolved configuration is a loadable scenario that reproduces the run.
+  const std::string resolved = text_attribute(root, "config");
+  Scenario again = scenario_from_text(resolved);
+  CHECK(simulate(again)["muscle/force"] == expected["muscle/force"]);
+  // The applied signals are described for offline reconstruction.
+  CHECK(text_attribute(file.openGroup("/inputs/drive.power"), "type") == "sequence");
+  CHECK(text_attribute(file.openGroup("/inputs/drive.power/segment0"), "type") == "multisine");
+  CHECK(text_attribute(file.openGroup("/inputs/load.deflection/segment1"), "type") == "random_steps");
+}
+
+TEST_CASE("Records longer than a chunk are written chunk by chunk without loss") {
+  Scenario scenario = scenario_from_text(physical_muscle_yaml(), {"drive.power=1 W"});
+  const std::string path = temporary_path("chunks.h5");
+  {
+    Hdf5Recorder recorder(path, *scenario.system, {}, 7);  // 1001 samples in chunks of 7
+    Integrator integrator(*scenario.system, scenario.solver);
+    recorder.finish(integrator.run(0.0, 100.0, 0.1, recorder));
+  }
+  const Trace expected = simulate(scenario);
+  const H5::H5File file(path, H5F_ACC_RDONLY);
+  CHECK(read_series(file, "/muscle/temperature") == expected["muscle/temperature"]);
+}
+
+TEST_CASE("A failed run is kept as .failed.h5 with its reason, and never under the final name") {
+  Scenario scenario = scenario_from_text(physical_muscle_yaml(), {"solver.max_steps=5", "drive.power=1 W"});
+  const std::string path = temporary_path("failing.h5");
+  std::filesystem::remove(path);
+  const RunOutcome outcome = run_scenario(scenario, path);
+  CHECK_FALSE(outcome.succeeded);
+  CHECK_FALSE(std::filesystem::exists(path));
+  CHECK_FALSE(std::filesystem::exists(Hdf5Recorder::partial_path(path)));
+  REQUIRE(outcome.output_path == temporary_path("failing.failed.h5"));
+  const H5::H5File file(outcome.output_path, H5F_ACC_RDONLY);
+  const H5::Group root = file.openGroup("/");
+  CHECK(text_attribute(root, "status") == "failed");
+  CHECK_THAT(text_attribute(root, "failure"), Catch::Contains("more than 5 solver steps"));
+}
+
+TEST_CASE("An interrupted recording leaves no file behind") {
+  Scenario scenario = scenario_from_text(physical_muscle_yaml());
+  const std::string path = temporary_path("interrupted.h5");
+  {
+    Hdf5Recorder recorder(path, *scenario.system, {});
+    CHECK(std::filesystem::exists(Hdf5Recorder::partial_path(path)));
+  }  // destroyed without finish(): as when an exception unwinds
+  CHECK_FALSE(std::filesystem::exists(Hdf5Recorder::partial_path(path)));
+  CHECK_FALSE(std::filesystem::exists(path));
+}
