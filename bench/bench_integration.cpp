@@ -36,12 +36,16 @@ int main(int argc, char** argv) {
     sink.values.reserve(1 << 20);
     tcpmsim::Integrator integrator(*scenario.system, scenario.solver);
     const auto started = std::chrono::steady_clock::now();
-    statistics = integrator.run(0.0, scenario.settings.duration, scenario.settings.output_interval, sink);
-    seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
+    statistics =
+        integrator.run(0.0, scenario.settings.duration, scenario.settings.output_interval, sink);
+    seconds.push_back(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
   }
   std::sort(seconds.begin(), seconds.end());
-  std::printf("median_seconds=%.6g min_seconds=%.6g steps=%ld rhs=%ld jacobians=%ld segments=%ld samples=%ld\n",
-              seconds[seconds.size() / 2], seconds.front(), statistics.steps, statistics.rhs_evaluations,
-              statistics.jacobian_evaluations, statistics.segments, statistics.output_samples);
+  std::printf(
+      "median_seconds=%.6g min_seconds=%.6g steps=%ld rhs=%ld jacobians=%ld segments=%ld "
+      "samples=%ld\n",
+      seconds[seconds.size() / 2], seconds.front(), statistics.steps, statistics.rhs_evaluations,
+      statistics.jacobian_evaluations, statistics.segments, statistics.output_samples);
   return 0;
 }

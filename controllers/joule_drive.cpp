@@ -5,28 +5,21 @@
 namespace tcpmsim {
 
 namespace {
-const char* command_name(JouleDriveParameters::Mode mode) {
-  switch (mode) {
-    case JouleDriveParameters::Mode::duty:
-      return "duty";
-    case JouleDriveParameters::Mode::current:
-      return "current";
-    case JouleDriveParameters::Mode::power:
-      break;
-  }
-  return "power";
-}
+struct Command {
+  const char* name;  // the config key and output channel
+  const char* unit;
+};
 
-const char* command_unit(JouleDriveParameters::Mode mode) {
+Command command_of(JouleDriveParameters::Mode mode) {
   switch (mode) {
     case JouleDriveParameters::Mode::duty:
-      return "1";
+      return {"duty", "1"};
     case JouleDriveParameters::Mode::current:
-      return "A";
+      return {"current", "A"};
     case JouleDriveParameters::Mode::power:
       break;
   }
-  return "W";
+  return {"power", "W"};
 }
 }  // namespace
 
@@ -48,11 +41,11 @@ std::unique_ptr<JouleDrive> JouleDrive::from_config(const std::string& group,
     p.supply_voltage = node.quantity("supply_voltage", "V", ValueCheck::positive());
     p.series_resistance = node.quantity("series_resistance", "ohm", ValueCheck::non_negative());
   }
-  const ConfigNode command_node = node.at(command_name(p.mode));
-  auto command = read_signal(command_node, command_unit(p.mode), signals);
+  const ConfigNode command_node = node.at(command_of(p.mode).name);
+  auto command = read_signal(command_node, command_of(p.mode).unit, signals);
   const auto [low, high] = command->range(0.0, signals.duration);
   if (low < 0.0) {
-    command_node.fail(std::string("the ") + command_name(p.mode) + " signal goes negative (" +
+    command_node.fail(std::string("the ") + command_of(p.mode).name + " signal goes negative (" +
                       std::to_string(low) + ")");
   }
   if (p.mode == Mode::duty && high > 1.0) {
@@ -111,7 +104,7 @@ double JouleDrive::next_breakpoint_after(double t) const {
 }
 
 std::vector<Component::SignalRecord> JouleDrive::signal_records() const {
-  return {{command_name(parameters_.mode), command_unit(parameters_.mode), command_.get()}};
+  return {{command_of(parameters_.mode).name, command_of(parameters_.mode).unit, command_.get()}};
 }
 
 }  // namespace tcpmsim

@@ -13,7 +13,8 @@ double InductanceLaw::deflection(double inductance, double temperature) const {
 }
 
 InductanceLaw InductanceLaw::from_config(const ConfigNode& node) {
-  node.declare({"quantity", "lambda_l", "lambda_x", "lambda_T", "lambda_0", "reference_temperature"});
+  node.declare(
+      {"quantity", "lambda_l", "lambda_x", "lambda_T", "lambda_0", "reference_temperature"});
   InductanceLaw law;
   law.is_measure = node.choice_or("quantity", {"inductance", "measure"}, "inductance") == "measure";
   const char* per_length = law.is_measure ? "m" : "H*m";

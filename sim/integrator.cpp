@@ -70,8 +70,10 @@ std::string format_number(double value) {
 // Output times t0 + k * interval, then t_end if that is off the grid.
 class OutputGrid {
  public:
-  OutputGrid(double t0, double t_end, double interval) : t0_(t0), t_end_(t_end), interval_(interval) {
-    const auto last_on_grid = static_cast<long>(std::floor((t_end - t0) / interval * (1.0 + 1e-12)));
+  OutputGrid(double t0, double t_end, double interval)
+      : t0_(t0), t_end_(t_end), interval_(interval) {
+    const auto last_on_grid =
+        static_cast<long>(std::floor((t_end - t0) / interval * (1.0 + 1e-12)));
     const double last = t0 + static_cast<double>(last_on_grid) * interval;
     const bool end_on_grid = std::abs(last - t_end) <= 1e-9 * std::max(1.0, std::abs(t_end));
     count_ = last_on_grid + (end_on_grid ? 1 : 2);
@@ -111,7 +113,8 @@ int right_hand_side(realtype t, N_Vector y, N_Vector ydot, void* user_data) {
     if (!std::isfinite(derivatives[i])) {
       const auto& info = cv.system->states()[static_cast<std::size_t>(i)];
       cv.rhs_problem = "the derivative of " + info.name + " (component " + info.owner->group() +
-                       "/" + info.owner->kind() + ") is not finite at t = " + format_number(t) + " s";
+                       "/" + info.owner->kind() + ") is not finite at t = " + format_number(t) +
+                       " s";
       return kRecoverable;
     }
   }
@@ -274,18 +277,20 @@ SolverFailure Integrator::failure(const std::string& headline) {
   CVodeGetEstLocalErrors(cv.memory, errors);
   std::vector<std::pair<double, int>> ranked;
   for (int i = 0; i < size; ++i) {
-    ranked.emplace_back(std::abs(N_VGetArrayPointer(errors)[i] * N_VGetArrayPointer(weights)[i]), i);
+    ranked.emplace_back(std::abs(N_VGetArrayPointer(errors)[i] * N_VGetArrayPointer(weights)[i]),
+                        i);
   }
   N_VDestroy(weights);
   N_VDestroy(errors);
-  std::sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::sort(ranked.begin(), ranked.end(),
+            [](const auto& a, const auto& b) { return a.first > b.first; });
   const double* state = N_VGetArrayPointer(cv.state);
   message << "\n  state entries with the largest weighted local error:";
   for (std::size_t k = 0; k < std::min<std::size_t>(3, ranked.size()); ++k) {
     const auto& info = system_.states()[static_cast<std::size_t>(ranked[k].second)];
     message << "\n    " << info.name << " = " << state[ranked[k].second] << " " << info.unit
-            << " (weighted error " << ranked[k].first << ", component " << info.owner->group() << "/"
-            << info.owner->kind() << ")";
+            << " (weighted error " << ranked[k].first << ", component " << info.owner->group()
+            << "/" << info.owner->kind() << ")";
   }
   return SolverFailure(message.str(), now, statistics_);
 }
@@ -296,15 +301,18 @@ void Integrator::start_segment(double start, bool first) {
     check(CVodeInit(cv.memory, right_hand_side, start, cv.state), "CVodeInit");
     check(CVodeSetUserData(cv.memory, cvode_.get()), "CVodeSetUserData");
     check(CVodeSetErrHandlerFn(cv.memory, capture_error, cvode_.get()), "CVodeSetErrHandlerFn");
-    check(CVodeSVtolerances(cv.memory, settings_.relative_tolerance, cv.tolerances), "CVodeSVtolerances");
+    check(CVodeSVtolerances(cv.memory, settings_.relative_tolerance, cv.tolerances),
+          "CVodeSVtolerances");
     attach_linear_solver();
     check(CVodeSetMaxNumSteps(cv.memory, -1), "CVodeSetMaxNumSteps");
-    if (settings_.max_step > 0) check(CVodeSetMaxStep(cv.memory, settings_.max_step), "CVodeSetMaxStep");
+    if (settings_.max_step > 0)
+      check(CVodeSetMaxStep(cv.memory, settings_.max_step), "CVodeSetMaxStep");
   } else {
     accumulate_statistics();  // CVodeReInit zeroes CVODE's counters
     check(CVodeReInit(cv.memory, start, cv.state), "CVodeReInit");
   }
-  if (settings_.initial_step > 0) check(CVodeSetInitStep(cv.memory, settings_.initial_step), "CVodeSetInitStep");
+  if (settings_.initial_step > 0)
+    check(CVodeSetInitStep(cv.memory, settings_.initial_step), "CVodeSetInitStep");
 }
 
 SolverStatistics Integrator::run(double t0, double t_end, double output_interval, OutputSink& sink,
@@ -323,7 +331,8 @@ SolverStatistics Integrator::run(double t0, double t_end, double output_interval
     // shifted pieces may report an instant that is t itself after rounding.
     const double margin = time_margin(t);
     double stop = system_.next_breakpoint_after(t);
-    while (stop <= t + 2.0 * margin) stop = system_.next_breakpoint_after(std::max(stop, t + 2.0 * margin));
+    while (stop <= t + 2.0 * margin)
+      stop = system_.next_breakpoint_after(std::max(stop, t + 2.0 * margin));
     stop = std::min(stop, t_end);
     const bool last_segment = stop >= t_end;
     start_segment(t, t == t0);
@@ -347,7 +356,8 @@ SolverStatistics Integrator::run(double t0, double t_end, double output_interval
       CVodeGetLastStep(cv.memory, &last_step);
       collapsed_steps = last_step < 1e3 * time_margin(reached) ? collapsed_steps + 1 : 0;
       if (collapsed_steps > 100) {
-        throw failure("CVODE stalled (the step size collapsed to " + format_number(last_step) + " s)");
+        throw failure("CVODE stalled (the step size collapsed to " + format_number(last_step) +
+                      " s)");
       }
       // Interpolate every output time this step covered; a time equal to a breakpoint belongs
       // to the next segment (outputs are right-continuous), except the final time.

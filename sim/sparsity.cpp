@@ -10,24 +10,26 @@ int SparsityPattern::non_zeros() const {
   return count;
 }
 
-int SparsityPattern::upper_bandwidth() const {
-  int upper = 0;
-  for (int column = 0; column < size; ++column) {
-    for (int row : rows_of_column[static_cast<std::size_t>(column)]) {
-      upper = std::max(upper, column - row);
+namespace {
+// Largest (column - row) over the pattern: the upper half-bandwidth; with rows and columns
+// swapped in the sign, the lower one.
+int largest_offset(const SparsityPattern& pattern, int sign) {
+  int largest = 0;
+  for (int column = 0; column < pattern.size; ++column) {
+    for (int row : pattern.rows_of_column[static_cast<std::size_t>(column)]) {
+      largest = std::max(largest, sign * (column - row));
     }
   }
-  return upper;
+  return largest;
+}
+}  // namespace
+
+int SparsityPattern::upper_bandwidth() const {
+  return largest_offset(*this, +1);
 }
 
 int SparsityPattern::lower_bandwidth() const {
-  int lower = 0;
-  for (int column = 0; column < size; ++column) {
-    for (int row : rows_of_column[static_cast<std::size_t>(column)]) {
-      lower = std::max(lower, row - column);
-    }
-  }
-  return lower;
+  return largest_offset(*this, -1);
 }
 
 std::vector<std::vector<int>> SparsityPattern::column_groups() const {

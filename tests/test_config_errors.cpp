@@ -51,13 +51,16 @@ TEST_CASE("The reference configuration of these tests is valid") {
 
 TEST_CASE("A misspelt required key is reported as unknown, with the key it should be") {
   CHECK(error_of(replace(kValid, "    conductance:", "    conductanse:")) ==
-        "test.yaml:7:5: error: muscle.thermal.conductanse: unknown key 'conductanse' (did you mean 'conductance'?)");
+        "test.yaml:7:5: error: muscle.thermal.conductanse: unknown key 'conductanse' (did you mean "
+        "'conductance'?)");
 }
 
 TEST_CASE("A misspelt optional key is reported as unknown, with a suggestion") {
-  CHECK(error_of(replace(kValid, "    conductance: 0.05 W/K\n",
-                         "    conductance: 0.05 W/K\n    radation: {emissivity: 0.9, area: 1 cm^2}\n")) ==
-        "test.yaml:8:5: error: muscle.thermal.radation: unknown key 'radation' (did you mean 'radiation'?)");
+  CHECK(error_of(replace(
+            kValid, "    conductance: 0.05 W/K\n",
+            "    conductance: 0.05 W/K\n    radation: {emissivity: 0.9, area: 1 cm^2}\n")) ==
+        "test.yaml:8:5: error: muscle.thermal.radation: unknown key 'radation' (did you mean "
+        "'radiation'?)");
 }
 
 TEST_CASE("An unknown key far from every known one lists the known keys") {
@@ -74,39 +77,49 @@ TEST_CASE("A value of the wrong type says what was expected") {
   CHECK(error_of(replace(kValid, "k1: 10 N/m", "k1: [10 N/m, 11 N/m]")) ==
         "test.yaml:11:9: error: muscle.mechanics.k1: expected a quantity in N/m, got a sequence");
   CHECK(error_of(replace(kValid, "k1: 10 N/m", "k1: stiff")) ==
-        "test.yaml:11:9: error: muscle.mechanics.k1: expected a quantity in N/m such as '1.5 N/m', got 'stiff'");
+        "test.yaml:11:9: error: muscle.mechanics.k1: expected a quantity in N/m such as '1.5 N/m', "
+        "got 'stiff'");
 }
 
 TEST_CASE("A quantity in the wrong unit is rejected with both units") {
   CHECK(error_of(replace(kValid, "k1: 10 N/m", "k1: 10 N")) ==
-        "test.yaml:11:9: error: muscle.mechanics.k1: wrong unit in '10 N': unit 'N' cannot be converted to 'N/m'");
+        "test.yaml:11:9: error: muscle.mechanics.k1: wrong unit in '10 N': unit 'N' cannot be "
+        "converted to 'N/m'");
   CHECK(error_of(replace(kValid, "k1: 10 N/m", "k1: 10 blorps")) ==
-        "test.yaml:11:9: error: muscle.mechanics.k1: wrong unit in '10 blorps': 'blorps' is not a unit");
+        "test.yaml:11:9: error: muscle.mechanics.k1: wrong unit in '10 blorps': 'blorps' is not a "
+        "unit");
 }
 
 TEST_CASE("A dimensional quantity without a unit is rejected") {
   CHECK(error_of(replace(kValid, "heat_capacity: 0.5 J/K", "heat_capacity: 0.5")) ==
-        "test.yaml:6:20: error: muscle.thermal.heat_capacity: '0.5' has no unit; expected a quantity in J/K "
+        "test.yaml:6:20: error: muscle.thermal.heat_capacity: '0.5' has no unit; expected a "
+        "quantity in J/K "
         "(or a unit convertible to it), e.g. '0.5 J/K'");
 }
 
 TEST_CASE("Non-physical values are rejected") {
   CHECK(error_of(replace(kValid, "heat_capacity: 0.5 J/K", "heat_capacity: -0.5 J/K")) ==
-        "test.yaml:6:20: error: muscle.thermal.heat_capacity: expected a positive value in J/K, got '-0.5 J/K'");
+        "test.yaml:6:20: error: muscle.thermal.heat_capacity: expected a positive value in J/K, "
+        "got '-0.5 J/K'");
   CHECK(error_of(replace(kValid, "resistance: 10 ohm", "resistance: 0 ohm")) ==
         "test.yaml:15:15: error: muscle.resistance: expected a positive value in ohm, got '0 ohm'");
   CHECK(error_of(replace(kValid, "rtol: 1.0e-6", "rtol: 0")) ==
         "test.yaml:3:16: error: solver.rtol: expected a value in [1e-14, 0.1], got '0'");
-  CHECK(error_of(replace(kValid, "ambient_temperature: 20 degC", "ambient_temperature: -300 degC")) ==
-        "test.yaml:8:26: error: muscle.thermal.ambient_temperature: the ambient temperature must stay above 0 K");
-  CHECK(error_of(replace(kValid, "drive: {mode: power, power: 0 W}",
-                         "drive: {mode: duty, supply_voltage: 7 V, series_resistance: 0.57 ohm, duty: 1.2}")) ==
-        "test.yaml:17:77: error: drive.duty: the duty cycle reaches 1.200000; it must stay in [0, 1]");
+  CHECK(
+      error_of(replace(kValid, "ambient_temperature: 20 degC", "ambient_temperature: -300 degC")) ==
+      "test.yaml:8:26: error: muscle.thermal.ambient_temperature: the ambient temperature must "
+      "stay above 0 K");
+  CHECK(error_of(replace(
+            kValid, "drive: {mode: power, power: 0 W}",
+            "drive: {mode: duty, supply_voltage: 7 V, series_resistance: 0.57 ohm, duty: 1.2}")) ==
+        "test.yaml:17:77: error: drive.duty: the duty cycle reaches 1.200000; it must stay in [0, "
+        "1]");
 }
 
 TEST_CASE("A choice outside its options suggests the nearest one") {
   CHECK(error_of(replace(kValid, "linear_solver: dense", "linear_solver: dens")) ==
-        "test.yaml:3:39: error: solver.linear_solver: expected one of dense, band, klu, got 'dens' (did you mean 'dense'?)");
+        "test.yaml:3:39: error: solver.linear_solver: expected one of dense, band, klu, got 'dens' "
+        "(did you mean 'dense'?)");
 }
 
 TEST_CASE("Broken YAML is reported at its position") {
@@ -121,34 +134,45 @@ TEST_CASE("A duplicated key is an error, not a silent overwrite") {
 
 TEST_CASE("Errors in command-line overrides point at the --set") {
   CHECK(error_of(kValid, {"muscle.mechanics.k1=ten"}) ==
-        "command line (--set muscle.mechanics.k1=ten): error: muscle.mechanics.k1: expected a quantity in N/m "
+        "command line (--set muscle.mechanics.k1=ten): error: muscle.mechanics.k1: expected a "
+        "quantity in N/m "
         "such as '1.5 N/m', got 'ten'");
   CHECK(error_of(kValid, {"muscle.mechanics.k3=1 N/m"}) ==
-        "command line (--set muscle.mechanics.k3=1 N/m): error: muscle.mechanics.k3: unknown key 'k3' (did you mean 'k1'?)");
+        "command line (--set muscle.mechanics.k3=1 N/m): error: muscle.mechanics.k3: unknown key "
+        "'k3' (did you mean 'k1'?)");
   CHECK(error_of(kValid, {"muscle.mechanics.k1"}) ==
         "command line (--set muscle.mechanics.k1): error: expected --set key.path=value");
 }
 
 TEST_CASE("A deflection that reaches the inductance law's singularity is rejected") {
   CHECK(error_of(replace(kValid, "deflection: 20 mm}", "deflection: -30 mm}")) ==
-        "test.yaml:18:38: error: load.deflection: the deflection reaches -0.030000 m, at or below -lambda_x = "
+        "test.yaml:18:38: error: load.deflection: the deflection reaches -0.030000 m, at or below "
+        "-lambda_x = "
         "-0.028800 m where the inductance law (6.3) is singular");
 }
 
 TEST_CASE("Inconsistent model choices are explained") {
-  const std::string reduced = replace(
-      replace(kValid, "  thermal_force: {form: physical, force_per_kelvin: 2 mN/K, reference_temperature: 20 degC}\n",
-              "  thermal_force: {form: reduced, kappa_P: 4e-3 N/J, kappa_c: 0.1 1/s, ambient_temperature: 20 degC}\n"),
-      "  thermal:\n    heat_capacity: 0.5 J/K\n    conductance: 0.05 W/K\n    ambient_temperature: 20 degC\n", "");
+  const std::string reduced = replace(replace(kValid,
+                                              "  thermal_force: {form: physical, force_per_kelvin: "
+                                              "2 mN/K, reference_temperature: 20 degC}\n",
+                                              "  thermal_force: {form: reduced, kappa_P: 4e-3 N/J, "
+                                              "kappa_c: 0.1 1/s, ambient_temperature: 20 degC}\n"),
+                                      "  thermal:\n    heat_capacity: 0.5 J/K\n    conductance: "
+                                      "0.05 W/K\n    ambient_temperature: 20 degC\n",
+                                      "");
   CHECK_NOTHROW(scenario_from_text(reduced));
-  CHECK(error_of(replace(reduced, "resistance: 10 ohm",
-                         "resistance: {form: thermal, resistance: 10 ohm, temperature_coefficient: 6.41e-3 1/K, "
-                         "reference_temperature: 20 degC}")) ==
-        "test.yaml:11:15: error: muscle.resistance: depends on temperature, but the reduced thermal form reports "
+  CHECK(error_of(replace(
+            reduced, "resistance: 10 ohm",
+            "resistance: {form: thermal, resistance: 10 ohm, temperature_coefficient: 6.41e-3 1/K, "
+            "reference_temperature: 20 degC}")) ==
+        "test.yaml:11:15: error: muscle.resistance: depends on temperature, but the reduced "
+        "thermal form reports "
         "none; give muscle.thermal_force.force_per_kelvin");
-  CHECK(error_of(replace(kValid, "form: physical, force_per_kelvin: 2 mN/K, reference_temperature: 20 degC",
-                         "form: reduced, kappa_P: 4e-3 N/J, kappa_c: 0.1 1/s, ambient_temperature: 20 degC")) ==
-        "test.yaml:6:5: error: muscle.thermal: the reduced thermal form (7.1) has no thermal node; remove "
+  CHECK(error_of(replace(
+            kValid, "form: physical, force_per_kelvin: 2 mN/K, reference_temperature: 20 degC",
+            "form: reduced, kappa_P: 4e-3 N/J, kappa_c: 0.1 1/s, ambient_temperature: 20 degC")) ==
+        "test.yaml:6:5: error: muscle.thermal: the reduced thermal form (7.1) has no thermal node; "
+        "remove "
         "muscle.thermal or use thermal_force.form: physical");
 }
 

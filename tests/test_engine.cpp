@@ -24,8 +24,12 @@ class TestState final : public Component {
   void compute_derivatives(const Evaluation& e, double* d) const override {
     const double y = state(e, 0);
     switch (law_) {
-      case Law::decay: set_derivative(d, 0, -y); break;
-      case Law::blowup: set_derivative(d, 0, y * y); break;
+      case Law::decay:
+        set_derivative(d, 0, -y);
+        break;
+      case Law::blowup:
+        set_derivative(d, 0, y * y);
+        break;
       case Law::nan_after:
         set_derivative(d, 0, e.time > t_bad_ ? std::numeric_limits<double>::quiet_NaN() : -y);
         break;
@@ -40,7 +44,8 @@ class TestState final : public Component {
 // Reads an input (feedthrough or not) and republishes it.
 class Relay final : public Component {
  public:
-  Relay(std::string group, bool feedthrough) : Component(std::move(group), "relay"), feedthrough_(feedthrough) {}
+  Relay(std::string group, bool feedthrough)
+      : Component(std::move(group), "relay"), feedthrough_(feedthrough) {}
   std::vector<OutputDeclaration> outputs() const override { return {{"value", "1"}}; }
   std::vector<InputDeclaration> inputs() const override { return {{"in", feedthrough_}}; }
   void compute_outputs(const Evaluation& e) const override { set_output(e, 0, input(e, 0)); }
@@ -82,7 +87,8 @@ TEST_CASE("An unconnected input, an unknown source and an algebraic loop are ass
     System system;
     auto& relay = system.add(std::make_unique<Relay>("a", true));
     system.connect(relay, "in", "nowhere.value");
-    CHECK_THROWS_WITH(system.assemble(), "no component publishes 'nowhere.value' (needed by a/relay)");
+    CHECK_THROWS_WITH(system.assemble(),
+                      "no component publishes 'nowhere.value' (needed by a/relay)");
   }
   {
     System system;
@@ -90,7 +96,8 @@ TEST_CASE("An unconnected input, an unknown source and an algebraic loop are ass
     auto& b = system.add(std::make_unique<Relay>("b", true));
     system.connect(a, "in", "b.value");
     system.connect(b, "in", "a.value");
-    CHECK_THROWS_WITH(system.assemble(), "algebraic loop through direct-feedthrough inputs: a/relay b/relay");
+    CHECK_THROWS_WITH(system.assemble(),
+                      "algebraic loop through direct-feedthrough inputs: a/relay b/relay");
   }
 }
 
@@ -109,10 +116,11 @@ TEST_CASE("Components are evaluated after the outputs they read through feedthro
 
 TEST_CASE("A cycle that passes through a non-feedthrough input is not a loop") {
   // The thermal node and a temperature-dependent drive: each reads the other.
-  CHECK_NOTHROW(scenario_from_text(physical_muscle_yaml(), {
-      "drive={mode: duty, supply_voltage: 7 V, series_resistance: 0.5 ohm, duty: 0.5}",
-      "muscle.resistance={form: thermal, resistance: 9 ohm, temperature_coefficient: 6.41e-3 1/K, "
-      "reference_temperature: 20 degC}"}));
+  CHECK_NOTHROW(scenario_from_text(
+      physical_muscle_yaml(),
+      {"drive={mode: duty, supply_voltage: 7 V, series_resistance: 0.5 ohm, duty: 0.5}",
+       "muscle.resistance={form: thermal, resistance: 9 ohm, temperature_coefficient: 6.41e-3 1/K, "
+       "reference_temperature: 20 degC}"}));
 }
 
 TEST_CASE("The Jacobian pattern follows the wiring") {
@@ -135,7 +143,8 @@ TEST_CASE("The Jacobian pattern follows the wiring") {
 TEST_CASE("Dense, band and KLU linear solvers give the same trajectory") {
   const std::string config = source_path("configs/ch7_identification.yaml");
   auto run = [&](const std::string& solver) {
-    Scenario scenario = load_scenario(config, {"solver.linear_solver=" + solver, "solver.rtol=1e-8"}, shared_units());
+    Scenario scenario = load_scenario(
+        config, {"solver.linear_solver=" + solver, "solver.rtol=1e-8"}, shared_units());
     return simulate(scenario);
   };
   const Trace dense = run("dense"), band = run("band"), klu = run("klu");
@@ -144,8 +153,11 @@ TEST_CASE("Dense, band and KLU linear solvers give the same trajectory") {
   CHECK(klu.statistics.jacobian_evaluations > 0);
 }
 
-TEST_CASE("Outputs are sampled on the uniform grid, including the end, without a solver stop per sample") {
-  const Trace trace = simulate(physical_muscle_yaml(), {"scenario.duration=10.05 s", "output.rate=10 Hz"});
+TEST_CASE(
+    "Outputs are sampled on the uniform grid, including the end, without a solver stop per "
+    "sample") {
+  const Trace trace =
+      simulate(physical_muscle_yaml(), {"scenario.duration=10.05 s", "output.rate=10 Hz"});
   REQUIRE(trace.time.size() == 102);  // 0, 0.1, ..., 10.0, and 10.05
   CHECK(trace.time[37] == Approx(3.7).epsilon(1e-15));
   CHECK(trace.time.back() == 10.05);
@@ -154,8 +166,9 @@ TEST_CASE("Outputs are sampled on the uniform grid, including the end, without a
 }
 
 TEST_CASE("The integrator stops at every breakpoint and counts one segment per stop") {
-  const Trace trace = simulate(physical_muscle_yaml(),
-                               {"drive.power={type: steps, initial: 0 W, times: [10 s, 20 s, 30.5 s], values: [1 W, 2 W, 0 W]}"});
+  const Trace trace =
+      simulate(physical_muscle_yaml(), {"drive.power={type: steps, initial: 0 W, times: [10 s, 20 "
+                                        "s, 30.5 s], values: [1 W, 2 W, 0 W]}"});
   CHECK(trace.statistics.segments == 4);
 }
 
@@ -163,8 +176,11 @@ TEST_CASE("A non-finite derivative fails with the CVODE flag, the time and the c
   System system;
   system.add(std::make_unique<TestState>("test", TestState::Law::nan_after, 1.0, 0.5));
   const std::string message = failure_of(system, 2.0);
-  CHECK_THAT(message, Catch::Matches("CVODE (failed with CV_[A-Z_]+|stalled .*) at t = 0\\.5(.|\n)*"));
-  CHECK_THAT(message, Catch::Contains("the derivative of test.value (component test/test_state) is not finite"));
+  CHECK_THAT(message,
+             Catch::Matches("CVODE (failed with CV_[A-Z_]+|stalled .*) at t = 0\\.5(.|\n)*"));
+  CHECK_THAT(
+      message,
+      Catch::Contains("the derivative of test.value (component test/test_state) is not finite"));
   CHECK_THAT(message, Catch::Contains("largest weighted local error"));
 }
 
@@ -172,7 +188,8 @@ TEST_CASE("A solution that blows up fails naming the worst state entry") {
   System system;
   system.add(std::make_unique<TestState>("test", TestState::Law::blowup, 1.0));
   const std::string message = failure_of(system, 2.0);  // y = 1/(1 - t) leaves at t = 1
-  CHECK_THAT(message, Catch::Matches("CVODE (failed with CV_[A-Z_]+|stalled .*) at t = 0\\.99(.|\n)*"));
+  CHECK_THAT(message,
+             Catch::Matches("CVODE (failed with CV_[A-Z_]+|stalled .*) at t = 0\\.99(.|\n)*"));
   CHECK_THAT(message, Catch::Contains("test.value = "));
 }
 
@@ -188,4 +205,20 @@ TEST_CASE("The same configuration and seed give bit-identical traces; another se
     CHECK(values == second[name]);  // exact equality, not approximate
   }
   CHECK(first["drive/power"] != other["drive/power"]);
+}
+
+TEST_CASE("Per-state absolute tolerances from the scenario reach the solver, in the state's unit") {
+  Scenario scenario =
+      scenario_from_text(physical_muscle_yaml(), {"solver.atol={muscle: {temperature: 5 mK}}"});
+  const auto& states = scenario.system->states();
+  REQUIRE(states[0].name == "muscle.temperature");
+  CHECK(scenario.solver.absolute_tolerances[0] == Approx(5e-3));
+  CHECK(scenario.solver.absolute_tolerances[1] == states[1].absolute_tolerance);  // default kept
+  try {
+    scenario_from_text(physical_muscle_yaml(), {"solver.atol={muscle: {temprature: 5 mK}}"});
+    FAIL("accepted an unknown state");
+  } catch (const ConfigError& error) {
+    CHECK_THAT(error.what(), Catch::Contains("solver.atol.muscle.temprature: unknown key "
+                                             "'temprature' (did you mean 'temperature'?)"));
+  }
 }

@@ -46,7 +46,8 @@ T scalar_attribute(const H5::H5Object& object, const std::string& name, const H5
 
 }  // namespace
 
-TEST_CASE("The HDF5 record holds /time and one dataset per channel with units, identical to the run") {
+TEST_CASE(
+    "The HDF5 record holds /time and one dataset per channel with units, identical to the run") {
   const std::string config = source_path("configs/ch7_identification.yaml");
   Scenario in_memory = load_scenario(config, {}, shared_units());
   const Trace expected = simulate(in_memory);
@@ -80,9 +81,11 @@ TEST_CASE("The HDF5 record holds /time and one dataset per channel with units, i
   CHECK(text_attribute(root, "status") == "complete");
   CHECK(text_attribute(root, "scenario") == "ch7_identification");
   CHECK(scalar_attribute<std::uint64_t>(root, "seed", H5::PredType::NATIVE_UINT64) == 2019);
-  CHECK(scalar_attribute<std::int64_t>(root, "solver_steps", H5::PredType::NATIVE_INT64) == outcome.statistics.steps);
-  CHECK(scalar_attribute<std::int64_t>(root, "solver_rhs_evaluations", H5::PredType::NATIVE_INT64) ==
-        outcome.statistics.rhs_evaluations);
+  CHECK(scalar_attribute<std::int64_t>(root, "solver_steps", H5::PredType::NATIVE_INT64) ==
+        outcome.statistics.steps);
+  CHECK(
+      scalar_attribute<std::int64_t>(root, "solver_rhs_evaluations", H5::PredType::NATIVE_INT64) ==
+      outcome.statistics.rhs_evaluations);
   // The resolved configuration is a loadable scenario that reproduces the run.
   const std::string resolved = text_attribute(root, "config");
   Scenario again = scenario_from_text(resolved);
@@ -90,7 +93,8 @@ TEST_CASE("The HDF5 record holds /time and one dataset per channel with units, i
   // The applied signals are described for offline reconstruction.
   CHECK(text_attribute(file.openGroup("/inputs/drive.power"), "type") == "sequence");
   CHECK(text_attribute(file.openGroup("/inputs/drive.power/segment0"), "type") == "multisine");
-  CHECK(text_attribute(file.openGroup("/inputs/load.deflection/segment1"), "type") == "random_steps");
+  CHECK(text_attribute(file.openGroup("/inputs/load.deflection/segment1"), "type") ==
+        "random_steps");
 }
 
 TEST_CASE("Records longer than a chunk are written chunk by chunk without loss") {
@@ -107,7 +111,8 @@ TEST_CASE("Records longer than a chunk are written chunk by chunk without loss")
 }
 
 TEST_CASE("A failed run is kept as .failed.h5 with its reason, and never under the final name") {
-  Scenario scenario = scenario_from_text(physical_muscle_yaml(), {"solver.max_steps=5", "drive.power=1 W"});
+  Scenario scenario =
+      scenario_from_text(physical_muscle_yaml(), {"solver.max_steps=5", "drive.power=1 W"});
   const std::string path = temporary_path("failing.h5");
   std::filesystem::remove(path);
   const RunOutcome outcome = run_scenario(scenario, path);

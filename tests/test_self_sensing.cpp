@@ -23,7 +23,9 @@ InductanceLaw table_6_4_inductance() {
   return law;
 }
 
-ResistanceLaw table_6_4_resistance() { return {-0.005e3, 0.030, 8.717, kZeroCelsius}; }
+ResistanceLaw table_6_4_resistance() {
+  return {-0.005e3, 0.030, 8.717, kZeroCelsius};
+}
 }  // namespace
 
 TEST_CASE("Static self-sensing recovers (x, T) from (L, R) over the Table 6.2 ranges") {
@@ -33,7 +35,8 @@ TEST_CASE("Static self-sensing recovers (x, T) from (L, R) over the Table 6.2 ra
   for (double x_mm = 2.0; x_mm <= 30.0; x_mm += 0.5) {
     for (double T_c = 50.0; T_c <= 110.0; T_c += 2.5) {
       const double x = x_mm * 1e-3, T = T_c + kZeroCelsius;
-      const auto recovered = invert_impedance(inductance, resistance, inductance(x, T), resistance(x, T));
+      const auto recovered =
+          invert_impedance(inductance, resistance, inductance(x, T), resistance(x, T));
       worst_x = std::max(worst_x, std::abs(recovered.deflection - x));
       worst_T = std::max(worst_T, std::abs(recovered.temperature - T));
     }
@@ -51,7 +54,9 @@ TEST_CASE("The Table 6.4 inductance law spans the Table 6.2 inductance range") {
   CHECK(law(0.002, 110 + kZeroCelsius) * 1e6 == Approx(5.261).margin(0.01));
 }
 
-TEST_CASE("The Table 6.4 resistance law spans the Table 6.2 resistance range within its printed precision") {
+TEST_CASE(
+    "The Table 6.4 resistance law spans the Table 6.2 resistance range within its printed "
+    "precision") {
   // Published: R in [10.091, 12.083] ohm. rho_x = -0.005 ohm/mm is printed with one significant
   // digit, so the ends agree to about 0.1 ohm only.
   const auto law = table_6_4_resistance();
@@ -67,33 +72,40 @@ TEST_CASE("The printed (6.6) pairs T with the wrong root: with +sqrt(D) it does 
   const double x = 16.0, T = 80.0;
   const double L = lambda_l / (x + l0) + lambda_T * T + lambda_0;
   const double R = rho_x * x + rho_T * T + rho_0;
-  const double D = std::pow(L * rho_T - R * lambda_T - lambda_T * rho_x * l0 + lambda_T * rho_0 - lambda_0 * rho_T, 2) +
+  const double D = std::pow(L * rho_T - R * lambda_T - lambda_T * rho_x * l0 + lambda_T * rho_0 -
+                                lambda_0 * rho_T,
+                            2) +
                    4 * lambda_l * lambda_T * rho_x * rho_T;
-  const double common = R * lambda_T + L * rho_T - lambda_T * rho_0 - lambda_0 * rho_T + lambda_T * rho_x * l0;
+  const double common =
+      R * lambda_T + L * rho_T - lambda_T * rho_0 - lambda_0 * rho_T + lambda_T * rho_x * l0;
   const double printed = (common + std::sqrt(D)) / (2 * lambda_T * rho_T);
   const double corrected = (common - std::sqrt(D)) / (2 * lambda_T * rho_T);
   CHECK(std::abs(printed - T) > 100.0);
   CHECK(corrected == Approx(T).epsilon(1e-9));
   // (6.7) as printed, with +sqrt(D), is right.
-  const double x_printed = (R * lambda_T - L * rho_T - lambda_T * rho_0 + lambda_0 * rho_T - lambda_T * rho_x * l0 + std::sqrt(D)) /
+  const double x_printed = (R * lambda_T - L * rho_T - lambda_T * rho_0 + lambda_0 * rho_T -
+                            lambda_T * rho_x * l0 + std::sqrt(D)) /
                            (2 * lambda_T * rho_x);
   CHECK(x_printed == Approx(x).epsilon(1e-9));
 }
 
 TEST_CASE("Without temperature coupling the inversion reduces to (7.4)") {
   InductanceLaw law{2.81e-3, 0.0288, 0.0, 0.433, kZeroCelsius, true};  // Table 7.2 in L* units
-  const ResistanceLaw resistance{0.0, 0.0213, 10.18, kZeroCelsius};     // constantan-like
+  const ResistanceLaw resistance{0.0, 0.0213, 10.18, kZeroCelsius};    // constantan-like
   for (double x : {0.010, 0.020, 0.030}) {
     const double measure = law(x, 300.0);
     CHECK(law.deflection(measure, 300.0) == Approx(x).epsilon(1e-12));  // (7.4)
-    CHECK(invert_impedance(law, resistance, measure, resistance(x, 300.0)).deflection == Approx(x).epsilon(1e-12));
+    CHECK(invert_impedance(law, resistance, measure, resistance(x, 300.0)).deflection ==
+          Approx(x).epsilon(1e-12));
   }
 }
 
 TEST_CASE("The inversion rejects measurements outside the model and an unobservable temperature") {
   const auto inductance = table_6_4_inductance();
-  CHECK_THROWS_AS(invert_impedance(inductance, {0.0, 0.0, 10.0, kZeroCelsius}, 4.5e-6, 10.0), OutsideModelRange);
-  CHECK_THROWS_AS(invert_impedance(inductance, table_6_4_resistance(), 1e-6, 100.0), OutsideModelRange);
+  CHECK_THROWS_AS(invert_impedance(inductance, {0.0, 0.0, 10.0, kZeroCelsius}, 4.5e-6, 10.0),
+                  OutsideModelRange);
+  CHECK_THROWS_AS(invert_impedance(inductance, table_6_4_resistance(), 1e-6, 100.0),
+                  OutsideModelRange);
 }
 
 TEST_CASE("The drive's power law (7.2) reproduces the thesis' power limits") {

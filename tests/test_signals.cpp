@@ -21,14 +21,17 @@ const double kLow = std::pow(10.0, -2.4), kHigh = std::pow(10.0, -1.1);  // thes
 
 std::unique_ptr<Signal> signal_from(const std::string& yaml, std::string_view unit, double duration,
                                     std::uint64_t seed = 1) {
-  const ConfigNode root = ConfigNode::load_text("signal: " + yaml, "signal.yaml", {}, shared_units());
+  const ConfigNode root =
+      ConfigNode::load_text("signal: " + yaml, "signal.yaml", {}, shared_units());
   auto signal = read_signal(root.at("signal"), unit, {seed, duration});
   root.reject_unknown_keys();
   return signal;
 }
 }  // namespace
 
-TEST_CASE("Multisine phases follow Schroeder (7.12): phi_i = phi_0 - pi i^2 / N on equally spaced frequencies") {
+TEST_CASE(
+    "Multisine phases follow Schroeder (7.12): phi_i = phi_0 - pi i^2 / N on equally spaced "
+    "frequencies") {
   const auto signal = MultisineSignal::schroeder(11, kLow, kHigh, 0.3);
   const auto description = signal.describe();
   const auto& frequencies = description.arrays[1].second;
@@ -39,7 +42,8 @@ TEST_CASE("Multisine phases follow Schroeder (7.12): phi_i = phi_0 - pi i^2 / N 
   for (int i = 1; i <= 11; ++i) {
     CHECK(phases[static_cast<std::size_t>(i - 1)] == Approx(0.3 - std::numbers::pi * i * i / 11));
     if (i > 1) {
-      CHECK(frequencies[static_cast<std::size_t>(i - 1)] - frequencies[static_cast<std::size_t>(i - 2)] ==
+      CHECK(frequencies[static_cast<std::size_t>(i - 1)] -
+                frequencies[static_cast<std::size_t>(i - 2)] ==
             Approx((kHigh - kLow) / 10));
     }
   }
@@ -57,13 +61,17 @@ TEST_CASE("Schroeder phases give a lower crest factor than random phases") {
     const int trials = 200;
     for (int trial = 0; trial < trials; ++trial) {
       std::vector<double> phases;
-      for (int i = 0; i < components; ++i) phases.push_back(stream.uniform(0.0, 2.0 * std::numbers::pi));
-      const MultisineSignal random(0.0, std::vector<double>(frequencies.size(), 1.0), frequencies, phases);
+      for (int i = 0; i < components; ++i)
+        phases.push_back(stream.uniform(0.0, 2.0 * std::numbers::pi));
+      const MultisineSignal random(0.0, std::vector<double>(frequencies.size(), 1.0), frequencies,
+                                   phases);
       random_sum += random.crest_factor(1.0 / f0);
     }
-    INFO(components << " components: Schroeder " << schroeder_crest << ", random mean " << random_sum / trials);
+    INFO(components << " components: Schroeder " << schroeder_crest << ", random mean "
+                    << random_sum / trials);
     CHECK(schroeder_crest < random_sum / trials);
-    CHECK(schroeder_crest < 2.0);  // a flat multisine of N tones: Schroeder keeps it near sqrt(2)..2
+    CHECK(schroeder_crest <
+          2.0);  // a flat multisine of N tones: Schroeder keeps it near sqrt(2)..2
   }
 }
 
@@ -74,7 +82,9 @@ TEST_CASE("A multisine scaled to a range spans exactly that range") {
   CHECK(high == Approx(3.12).epsilon(1e-9));
 }
 
-TEST_CASE("Random steps switch with probability 1/(0.5 tau_p f_s), a mean time between switches of tau_p/2") {
+TEST_CASE(
+    "Random steps switch with probability 1/(0.5 tau_p f_s), a mean time between switches of "
+    "tau_p/2") {
   RandomStepsSettings settings;
   settings.low = 0.1, settings.high = 3.12, settings.process_time_constant = 20.0;
   settings.sample_rate = 20.0, settings.duration = 2e5;
@@ -109,7 +119,8 @@ TEST_CASE("Random-step sizes stay within a quarter of the range before scaling")
 }
 
 TEST_CASE("Random signals are reproducible from the seed and differ between seeds and keys") {
-  const std::string yaml = "{type: random_steps, range: [0 W, 1 W], process_time_constant: 5 s, sample_rate: 10 Hz}";
+  const std::string yaml =
+      "{type: random_steps, range: [0 W, 1 W], process_time_constant: 5 s, sample_rate: 10 Hz}";
   const auto a = signal_from(yaml, "W", 500.0, 11), b = signal_from(yaml, "W", 500.0, 11);
   const auto c = signal_from(yaml, "W", 500.0, 12);
   CHECK(a->describe().arrays == b->describe().arrays);
@@ -117,19 +128,24 @@ TEST_CASE("Random signals are reproducible from the seed and differ between seed
 }
 
 TEST_CASE("Every signal declares its discontinuities as breakpoints") {
-  const auto steps = signal_from("{type: steps, initial: 0 W, times: [1 s, 2.5 s], values: [1 W, 0 W]}", "W", 10);
+  const auto steps =
+      signal_from("{type: steps, initial: 0 W, times: [1 s, 2.5 s], values: [1 W, 0 W]}", "W", 10);
   CHECK(steps->next_breakpoint_after(0.0) == 1.0);
   CHECK(steps->next_breakpoint_after(1.0) == 2.5);
   CHECK(steps->next_breakpoint_after(2.5) == kNoBreakpoint);
   CHECK(steps->value(1.0) == 1.0);  // right-continuous
-  const auto ramp = signal_from("{type: ramp, start_time: 2 s, end_time: 4 s, from: 1 mm, to: 3 mm}", "m", 10);
+  const auto ramp =
+      signal_from("{type: ramp, start_time: 2 s, end_time: 4 s, from: 1 mm, to: 3 mm}", "m", 10);
   CHECK(ramp->next_breakpoint_after(0.0) == 2.0);
   CHECK(ramp->next_breakpoint_after(2.0) == 4.0);
   CHECK(ramp->value(3.0) == Approx(0.002));
-  const auto sweep = signal_from("{type: log_sweep, offset: 0 N, amplitude: 1 N, band: [0.01 Hz, 1 Hz], duration: 100 s}", "N", 200);
+  const auto sweep = signal_from(
+      "{type: log_sweep, offset: 0 N, amplitude: 1 N, band: [0.01 Hz, 1 Hz], duration: 100 s}", "N",
+      200);
   CHECK(sweep->next_breakpoint_after(10.0) == 100.0);
   const auto sequence = signal_from(
-      "{type: sequence, segments: [{duration: 5 s, signal: 1 W}, {signal: {type: steps, initial: 2 W, times: [1 s], values: [3 W]}}]}",
+      "{type: sequence, segments: [{duration: 5 s, signal: 1 W}, {signal: {type: steps, initial: 2 "
+      "W, times: [1 s], values: [3 W]}}]}",
       "W", 10);
   CHECK(sequence->next_breakpoint_after(0.0) == 5.0);
   CHECK(sequence->next_breakpoint_after(5.0) == 6.0);
@@ -140,9 +156,11 @@ TEST_CASE("Every signal declares its discontinuities as breakpoints") {
 TEST_CASE("A shifted breakpoint that rounds onto the query time is skipped, not returned") {
   // 200 + 0.05 rounds so that (200.05 - 200) < 0.05: a naive shift would return 200.05 again.
   std::vector<SequenceSignal::Segment> segments;
-  segments.push_back({0.0, std::make_unique<PiecewiseConstantSignal>(0.0, std::vector<double>{}, std::vector<double>{})});
-  segments.push_back({200.0, std::make_unique<PiecewiseConstantSignal>(0.0, std::vector<double>{0.05, 0.1},
-                                                                       std::vector<double>{1.0, 2.0})});
+  segments.push_back({0.0, std::make_unique<PiecewiseConstantSignal>(0.0, std::vector<double>{},
+                                                                     std::vector<double>{})});
+  segments.push_back(
+      {200.0, std::make_unique<PiecewiseConstantSignal>(0.0, std::vector<double>{0.05, 0.1},
+                                                        std::vector<double>{1.0, 2.0})});
   const SequenceSignal sequence(std::move(segments));
   const double first = sequence.next_breakpoint_after(199.0);
   CHECK(first == 200.0);
@@ -152,7 +170,8 @@ TEST_CASE("A shifted breakpoint that rounds onto the query time is skipped, not 
 }
 
 TEST_CASE("A staircase holds each level and moves at the configured rate") {
-  const auto stairs = signal_from("{type: staircase, levels: [2 mm, 4 mm, 2 mm], hold: 15 s, rate: 15 mm/min}", "m", 100);
+  const auto stairs = signal_from(
+      "{type: staircase, levels: [2 mm, 4 mm, 2 mm], hold: 15 s, rate: 15 mm/min}", "m", 100);
   CHECK(stairs->value(14.9) == Approx(0.002));
   CHECK(stairs->value(19.0) == Approx(0.003));  // halfway through the 8 s move
   CHECK(stairs->value(30.0) == Approx(0.004));
@@ -160,22 +179,24 @@ TEST_CASE("A staircase holds each level and moves at the configured rate") {
 }
 
 TEST_CASE("A periodic signal restarts its clock every period") {
-  const PeriodicSignal periodic(10.0, std::make_unique<PiecewiseConstantSignal>(0.0, std::vector<double>{4.0},
-                                                                                std::vector<double>{1.0}));
+  const PeriodicSignal periodic(10.0, std::make_unique<PiecewiseConstantSignal>(
+                                          0.0, std::vector<double>{4.0}, std::vector<double>{1.0}));
   CHECK(periodic.value(3.0) == 0.0);
   CHECK(periodic.value(24.0) == 1.0);
   CHECK(periodic.next_breakpoint_after(5.0) == 10.0);
   CHECK(periodic.next_breakpoint_after(10.0) == 14.0);
 }
 
-TEST_CASE("A logarithmic sweep's instantaneous frequency grows exponentially from f_start to f_end") {
+TEST_CASE(
+    "A logarithmic sweep's instantaneous frequency grows exponentially from f_start to f_end") {
   const LogSweepSignal sweep(0.0, 1.0, 1.0, 100.0, 100.0);
   CHECK(sweep.instantaneous_frequency(0.0) == Approx(1.0));
   CHECK(sweep.instantaneous_frequency(50.0) == Approx(10.0));
   CHECK(sweep.instantaneous_frequency(100.0) == Approx(100.0));
   // Zero crossings over [50, 52] s count twice the cycles, the integral of f(t) dt.
   const double rate = std::log(100.0);
-  const double cycles = 100.0 / rate * (std::exp(52.0 * rate / 100.0) - std::exp(50.0 * rate / 100.0));
+  const double cycles =
+      100.0 / rate * (std::exp(52.0 * rate / 100.0) - std::exp(50.0 * rate / 100.0));
   int crossings = 0;
   for (int k = 0; k < 200000; ++k) {
     const double t0 = 50.0 + k * 1e-5, t1 = t0 + 1e-5;

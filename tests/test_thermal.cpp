@@ -10,24 +10,30 @@ using namespace tcpmsim;
 using namespace tcpmsim::testing;
 
 namespace {
-constexpr double kAmbient = 293.15;  // 20 degC, as in the test muscle
+constexpr double kAmbient = 293.15;                     // 20 degC, as in the test muscle
 constexpr double kCapacity = 0.5, kConductance = 0.05;  // J/K, W/K: tau = 10 s
 
 // Error allowed for a global solution at relative tolerance rtol on a quantity of magnitude
 // `scale`: BDF's global error on these stable linear problems stays within tens of rtol.
-double allowed(double rtol, double scale) { return 50.0 * rtol * scale; }
+double allowed(double rtol, double scale) {
+  return 50.0 * rtol * scale;
+}
 
 double step_response(double t, double step_time, double power) {
   if (t < step_time) return kAmbient;
-  return kAmbient + power / kConductance * (1.0 - std::exp(-(t - step_time) * kConductance / kCapacity));
+  return kAmbient +
+         power / kConductance * (1.0 - std::exp(-(t - step_time) * kConductance / kCapacity));
 }
 }  // namespace
 
-TEST_CASE("A power step heats the thermal node with the first-order response T_amb + P/hA (1 - exp(-t hA/C))") {
+TEST_CASE(
+    "A power step heats the thermal node with the first-order response T_amb + P/hA (1 - exp(-t "
+    "hA/C))") {
   for (double rtol : {1e-6, 1e-9}) {
-    const Trace trace = simulate(physical_muscle_yaml(),
-                                 {"solver.rtol=" + number(rtol),
-                                  "drive.power={type: steps, initial: 0 W, times: [10 s], values: [1.5 W]}"});
+    const Trace trace =
+        simulate(physical_muscle_yaml(),
+                 {"solver.rtol=" + number(rtol),
+                  "drive.power={type: steps, initial: 0 W, times: [10 s], values: [1.5 W]}"});
     const auto& temperature = trace["muscle/temperature"];
     double worst = 0.0;
     for (std::size_t i = 0; i < trace.time.size(); ++i) {
@@ -40,12 +46,14 @@ TEST_CASE("A power step heats the thermal node with the first-order response T_a
 
 TEST_CASE("The step-response error shrinks with the solver tolerance") {
   auto worst_error = [](double rtol) {
-    const Trace trace = simulate(physical_muscle_yaml(),
-                                 {"solver.rtol=" + number(rtol),
-                                  "drive.power={type: steps, initial: 0 W, times: [10 s], values: [1.5 W]}"});
+    const Trace trace =
+        simulate(physical_muscle_yaml(),
+                 {"solver.rtol=" + number(rtol),
+                  "drive.power={type: steps, initial: 0 W, times: [10 s], values: [1.5 W]}"});
     double worst = 0.0;
     for (std::size_t i = 0; i < trace.time.size(); ++i) {
-      worst = std::max(worst, std::abs(trace["muscle/temperature"][i] - step_response(trace.time[i], 10.0, 1.5)));
+      worst = std::max(worst, std::abs(trace["muscle/temperature"][i] -
+                                       step_response(trace.time[i], 10.0, 1.5)));
     }
     return worst;
   };
@@ -54,11 +62,11 @@ TEST_CASE("The step-response error shrinks with the solver tolerance") {
 
 TEST_CASE("Energy is conserved: integral of P dt = C dT + integral of heat loss, with radiation") {
   // Piecewise-constant power: its integral is exact, independent of the solver.
-  const Trace trace = simulate(
-      physical_muscle_yaml(),
-      {"muscle.thermal.energy_accounting=true",
-       "muscle.thermal.radiation={emissivity: 0.9, area: 2 cm^2}",
-       "drive.power={type: steps, initial: 0.5 W, times: [20 s, 45.5 s, 70 s], values: [2 W, 0 W, 1 W]}"});
+  const Trace trace =
+      simulate(physical_muscle_yaml(), {"muscle.thermal.energy_accounting=true",
+                                        "muscle.thermal.radiation={emissivity: 0.9, area: 2 cm^2}",
+                                        "drive.power={type: steps, initial: 0.5 W, times: [20 s, "
+                                        "45.5 s, 70 s], values: [2 W, 0 W, 1 W]}"});
   const double delivered = 0.5 * 20 + 2.0 * 25.5 + 0.0 * 24.5 + 1.0 * 30;  // J
   const double heat_in = trace["muscle/heat_in"].back();
   const double heat_lost = trace["muscle/heat_lost"].back();
@@ -71,7 +79,8 @@ TEST_CASE("Energy is conserved: integral of P dt = C dT + integral of heat loss,
   double trapezoid = 0.0;
   for (std::size_t i = 1; i < T.size(); ++i) {
     auto loss = [&](double t) {
-      return kConductance * (t - kAmbient) + emissivity * sigma * area * (std::pow(t, 4) - std::pow(kAmbient, 4));
+      return kConductance * (t - kAmbient) +
+             emissivity * sigma * area * (std::pow(t, 4) - std::pow(kAmbient, 4));
     };
     trapezoid += 0.5 * (loss(T[i]) + loss(T[i - 1])) * (trace.time[i] - trace.time[i - 1]);
   }
@@ -98,15 +107,19 @@ TEST_CASE("A one-sample heat pulse is not stepped over") {
   }
 }
 
-TEST_CASE("The reduced thermal force (7.1) equals the physical form under kappa_c = hA/C, kappa_P = phi_T/C") {
+TEST_CASE(
+    "The reduced thermal force (7.1) equals the physical form under kappa_c = hA/C, kappa_P = "
+    "phi_T/C") {
   const std::vector<std::string> excitation{
-      "drive.power={type: multisine, components: 7, band: [0.004 Hz, 0.08 Hz], range: [0.1 W, 3 W]}",
+      "drive.power={type: multisine, components: 7, band: [0.004 Hz, 0.08 Hz], range: [0.1 W, 3 "
+      "W]}",
       "load.deflection={type: sine, offset: 20 mm, amplitude: 5 mm, frequency: 0.05 Hz}"};
   const Trace physical = simulate(physical_muscle_yaml(), excitation);
   const Trace reduced = simulate(reduced_muscle_yaml(), excitation);
   CHECK(max_abs_difference(physical["muscle/thermal_force"], reduced["muscle/thermal_force"]) <=
         allowed(1e-8, 0.2));
-  CHECK(max_abs_difference(physical["muscle/force"], reduced["muscle/force"]) <= allowed(1e-8, 0.5));
+  CHECK(max_abs_difference(physical["muscle/force"], reduced["muscle/force"]) <=
+        allowed(1e-8, 0.5));
   CHECK(max_abs_difference(physical["muscle/temperature"], reduced["muscle/temperature"]) <=
         allowed(1e-8, 400.0));
 }

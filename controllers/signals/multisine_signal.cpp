@@ -19,7 +19,8 @@ MultisineSignal::MultisineSignal(double offset, std::vector<double> amplitudes,
   }
   const std::size_t count = frequencies_.size();
   if (count > 2) {
-    const double spacing = (frequencies_.back() - frequencies_.front()) / static_cast<double>(count - 1);
+    const double spacing =
+        (frequencies_.back() - frequencies_.front()) / static_cast<double>(count - 1);
     equally_spaced_ = spacing > 0.0;
     for (std::size_t i = 0; i < count && equally_spaced_; ++i) {
       const double expected = frequencies_.front() + spacing * static_cast<double>(i);
@@ -56,7 +57,8 @@ double MultisineSignal::value(double time) const {
   if (equally_spaced_) {
     // sin(a + k b + phi_k) = Im(e^{i(a + k b)}) cos(phi_k) + Re(e^{i(a + k b)}) sin(phi_k),
     // with e^{i(a + k b)} advanced by one rotation per component.
-    const double spacing = (frequencies_.back() - frequencies_.front()) / static_cast<double>(frequencies_.size() - 1);
+    const double spacing =
+        (frequencies_.back() - frequencies_.front()) / static_cast<double>(frequencies_.size() - 1);
     const double a = 2.0 * std::numbers::pi * frequencies_.front() * time;
     const double b = 2.0 * std::numbers::pi * spacing * time;
     double re = std::cos(a), im = std::sin(a);
@@ -102,7 +104,8 @@ std::pair<double, double> MultisineSignal::range(double begin, double end) const
     const double right_slope = slope(right);
     if ((left_slope > 0.0) != (right_slope > 0.0)) {
       double a = left, b = right, slope_a = left_slope;
-      for (int iteration = 0; iteration < 60 && b - a > 1e-12 * std::max(1.0, std::abs(b)); ++iteration) {
+      for (int iteration = 0; iteration < 60 && b - a > 1e-12 * std::max(1.0, std::abs(b));
+           ++iteration) {
         const double middle = 0.5 * (a + b);
         const double slope_middle = slope(middle);
         if ((slope_middle > 0.0) == (slope_a > 0.0)) {
@@ -142,7 +145,8 @@ double MultisineSignal::crest_factor(double duration) const {
   const auto samples = static_cast<long>(std::ceil(duration * fastest * 64.0)) + 1;
   double sum_of_squares = 0.0;
   for (long k = 0; k < samples; ++k) {
-    const double deviation = value(duration * static_cast<double>(k) / static_cast<double>(samples)) - offset_;
+    const double deviation =
+        value(duration * static_cast<double>(k) / static_cast<double>(samples)) - offset_;
     sum_of_squares += deviation * deviation;
   }
   return peak / std::sqrt(sum_of_squares / static_cast<double>(samples));

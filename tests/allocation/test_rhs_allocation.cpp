@@ -11,20 +11,54 @@ namespace {
 std::atomic<long> allocations{0};
 }
 
-// Counting replacements of the global allocation functions (this executable only).
-void* operator new(std::size_t size) {
+// Counting replacements of every global allocation function (this executable only). All
+// variants are replaced so that new and delete always pair up (AddressSanitizer checks).
+namespace {
+void* counted(std::size_t size) {
   ++allocations;
-  if (void* memory = std::malloc(size == 0 ? 1 : size)) return memory;
+  return std::malloc(size == 0 ? 1 : size);
+}
+}  // namespace
+
+void* operator new(std::size_t size) {
+  if (void* memory = counted(size)) return memory;
   throw std::bad_alloc();
 }
-void operator delete(void* memory) noexcept { std::free(memory); }
-void operator delete(void* memory, std::size_t) noexcept { std::free(memory); }
+void* operator new[](std::size_t size) {
+  if (void* memory = counted(size)) return memory;
+  throw std::bad_alloc();
+}
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
+  return counted(size);
+}
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
+  return counted(size);
+}
+void operator delete(void* memory) noexcept {
+  std::free(memory);
+}
+void operator delete[](void* memory) noexcept {
+  std::free(memory);
+}
+void operator delete(void* memory, std::size_t) noexcept {
+  std::free(memory);
+}
+void operator delete[](void* memory, std::size_t) noexcept {
+  std::free(memory);
+}
+void operator delete(void* memory, const std::nothrow_t&) noexcept {
+  std::free(memory);
+}
+void operator delete[](void* memory, const std::nothrow_t&) noexcept {
+  std::free(memory);
+}
 
 using namespace tcpmsim;
 using namespace tcpmsim::testing;
 
 TEST_CASE("Evaluating the right-hand side and the outputs allocates nothing") {
-  for (const char* config : {"configs/ch7_identification.yaml", "configs/ch6_static_staircase.yaml"}) {
+  for (const char* config :
+       {"configs/ch7_identification.yaml", "configs/ch6_static_staircase.yaml"}) {
     Scenario scenario = load_scenario(source_path(config), {}, shared_units());
     System& system = *scenario.system;
     std::vector<double> state(static_cast<std::size_t>(system.state_size()));

@@ -63,44 +63,41 @@ Trace simulate(const std::string& yaml, const std::vector<std::string>& override
   return simulate(scenario);
 }
 
-std::string physical_muscle_yaml() {
-  return R"(
+namespace {
+const char* kHeader = R"(
 scenario: {name: test, duration: 100 s, seed: 1}
 output: {rate: 10 Hz}
 solver: {rtol: 1.0e-8}
-muscle:
-  thermal:
-    heat_capacity: 0.5 J/K
-    conductance: 0.05 W/K
-    ambient_temperature: 20 degC
-  thermal_force: {form: physical, force_per_kelvin: 2 mN/K, reference_temperature: 20 degC}
+)";
+const char* kRestOfMuscleAndLoad = R"(
   mechanics: {k1: 10 N/m, k2: 2.5 N/m, damping: 5 N*s/m, force_offset: 0.1 N}
   resistance: 10 ohm
   inductance: {quantity: measure, lambda_l: 2.81 mm, lambda_x: 28.8 mm, lambda_0: 0.433}
 drive: {mode: power, power: 0 W}
 load: {type: deflection, deflection: 20 mm}
 )";
+}  // namespace
+
+std::string physical_muscle_yaml() {
+  return std::string(kHeader) + R"(muscle:
+  thermal:
+    heat_capacity: 0.5 J/K
+    conductance: 0.05 W/K
+    ambient_temperature: 20 degC
+  thermal_force: {form: physical, force_per_kelvin: 2 mN/K, reference_temperature: 20 degC})" +
+         kRestOfMuscleAndLoad;
 }
 
 std::string reduced_muscle_yaml() {
   // kappa_P = phi_T / C = 0.002 / 0.5 = 4e-3 N/J, kappa_c = hA / C = 0.1 1/s
-  return R"(
-scenario: {name: test, duration: 100 s, seed: 1}
-output: {rate: 10 Hz}
-solver: {rtol: 1.0e-8}
-muscle:
+  return std::string(kHeader) + R"(muscle:
   thermal_force:
     form: reduced
     kappa_P: 4.0e-3 N/J
     kappa_c: 0.1 1/s
     ambient_temperature: 20 degC
-    force_per_kelvin: 2 mN/K
-  mechanics: {k1: 10 N/m, k2: 2.5 N/m, damping: 5 N*s/m, force_offset: 0.1 N}
-  resistance: 10 ohm
-  inductance: {quantity: measure, lambda_l: 2.81 mm, lambda_x: 28.8 mm, lambda_0: 0.433}
-drive: {mode: power, power: 0 W}
-load: {type: deflection, deflection: 20 mm}
-)";
+    force_per_kelvin: 2 mN/K)" +
+         kRestOfMuscleAndLoad;
 }
 
 std::string number(double value) {

@@ -34,7 +34,8 @@ struct Trace {
 
 std::shared_ptr<const UnitSystem> shared_units();
 
-Scenario scenario_from_text(const std::string& yaml, const std::vector<std::string>& overrides = {});
+Scenario scenario_from_text(const std::string& yaml,
+                            const std::vector<std::string>& overrides = {});
 Trace simulate(Scenario& scenario);
 Trace simulate(const std::string& yaml, const std::vector<std::string>& overrides = {});
 
