@@ -37,7 +37,8 @@ int main(int argc, char** argv) {
     tcpmsim::Integrator integrator(*scenario.system, scenario.solver);
     const auto started = std::chrono::steady_clock::now();
     statistics =
-        integrator.run(0.0, scenario.settings.duration, scenario.settings.output_interval, sink);
+        integrator.run(0.0, scenario.settings.duration,
+                                {scenario.settings.output_interval, scenario.settings.output_start}, sink);
     seconds.push_back(
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
   }

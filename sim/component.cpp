@@ -13,6 +13,8 @@ void Component::initialize(const Evaluation&, std::span<double> own_state) const
 
 void Component::compute_outputs(const Evaluation&) const {}
 
+void Component::compute_observations(const Evaluation&) const {}
+
 void Component::compute_derivatives(const Evaluation&, double*) const {}
 
 double Component::next_breakpoint_after(double) const {

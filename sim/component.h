@@ -16,18 +16,25 @@ struct StateDeclaration {
 };
 
 // A named, unit-carrying value a component publishes for others (and for the recorder).
+// An *observed* output is expensive and feeds nothing continuous (a coil's inductance from
+// Maxwell's O(N^2) sum): it is computed only for the record and at breakpoints, never inside
+// the right-hand side, and may be read only by sampled inputs.
 struct OutputDeclaration {
   std::string name;
   std::string unit;
+  bool observed = false;
 };
 
 // An input port. A direct-feedthrough input is read while computing outputs; the engine
 // orders components so that such inputs are computed first. Inputs read only for derivatives
 // impose no order, which is what lets a thermal node and a temperature-dependent drive
 // feed each other without an algebraic loop.
+// A sampled input is read only at breakpoints (a controller's sample instants), so it may
+// read observed outputs.
 struct InputDeclaration {
   std::string name;
   bool direct_feedthrough;
+  bool sampled = false;
 };
 
 // Everything a component sees during one evaluation. `signal_time` is the time at which
@@ -75,8 +82,11 @@ class Component {
   // (a relaxed dashpot starts at the imposed deflection).
   virtual void initialize(const Evaluation& evaluation, std::span<double> own_state) const;
 
-  // Computes all outputs from the component's state, its inputs and time.
+  // Computes all non-observed outputs from the component's state, its inputs and time.
   virtual void compute_outputs(const Evaluation& evaluation) const;
+  // Computes the observed outputs; called after compute_outputs, for the record and at
+  // breakpoints only. Must not allocate.
+  virtual void compute_observations(const Evaluation& evaluation) const;
 
   // Writes d(own state)/dt into the global derivative vector. Must not allocate.
   virtual void compute_derivatives(const Evaluation& evaluation, double* derivatives) const;

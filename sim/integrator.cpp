@@ -1,11 +1,14 @@
 #include "sim/integrator.h"
 
+#include "sim/serial_vector_kernels.h"
+
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_band.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunlinsol/sunlinsol_klu.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 #include <sunmatrix/sunmatrix_band.h>
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
@@ -25,6 +28,7 @@ struct detail::CvodeHandles {
   N_Vector tolerances = nullptr;
   SUNMatrix matrix = nullptr;
   SUNLinearSolver linear_solver = nullptr;
+  SUNNonlinearSolver nonlinear_solver = nullptr;
   void* memory = nullptr;
 
   // Bookkeeping the callbacks need.
@@ -45,6 +49,7 @@ struct detail::CvodeHandles {
 
   ~CvodeHandles() {
     if (memory) CVodeFree(&memory);
+    if (nonlinear_solver) SUNNonlinSolFree(nonlinear_solver);
     if (linear_solver) SUNLinSolFree(linear_solver);
     if (matrix) SUNMatDestroy(matrix);
     if (tolerances) N_VDestroy(tolerances);
@@ -193,9 +198,9 @@ Integrator::Integrator(System& system, SolverSettings settings)
   cv.relative_tolerance = settings_.relative_tolerance;
   check(SUNContext_Create(nullptr, &cv.context), "SUNContext_Create");
   cv.state = N_VNew_Serial(size, cv.context);
-  N_VEnableFusedOps_Serial(cv.state, SUNTRUE);  // fewer vector-op calls per step
-  cv.scratch = N_VNew_Serial(size, cv.context);
-  cv.tolerances = N_VNew_Serial(size, cv.context);
+  install_optimised_serial_kernels(cv.state);  // before cloning: the clones inherit them
+  cv.scratch = N_VClone(cv.state);
+  cv.tolerances = N_VClone(cv.state);
   double* tolerances = N_VGetArrayPointer(cv.tolerances);
   for (int i = 0; i < size; ++i) {
     const auto index = static_cast<std::size_t>(i);
@@ -203,7 +208,7 @@ Integrator::Integrator(System& system, SolverSettings settings)
                         ? system_.states()[index].absolute_tolerance
                         : settings_.absolute_tolerances.at(index);
   }
-  cv.memory = CVodeCreate(CV_BDF, cv.context);
+  cv.memory = CVodeCreate(settings_.method == IntegrationMethod::adams ? CV_ADAMS : CV_BDF, cv.context);
   if (!cv.memory) throw std::runtime_error("CVodeCreate failed");
 }
 
@@ -256,8 +261,10 @@ void Integrator::accumulate_statistics() {
   add(CVodeGetNumErrTestFails, cv.memory, statistics_.error_test_failures);
   add(CVodeGetNumNonlinSolvIters, cv.memory, statistics_.nonlinear_iterations);
   add(CVodeGetNumNonlinSolvConvFails, cv.memory, statistics_.nonlinear_convergence_failures);
-  add(CVodeGetNumJacEvals, cv.memory, statistics_.jacobian_evaluations);
-  add(CVodeGetNumLinRhsEvals, cv.memory, statistics_.rhs_evaluations_for_jacobian);
+  if (settings_.method == IntegrationMethod::bdf) {
+    add(CVodeGetNumJacEvals, cv.memory, statistics_.jacobian_evaluations);
+    add(CVodeGetNumLinRhsEvals, cv.memory, statistics_.rhs_evaluations_for_jacobian);
+  }
 }
 
 SolverFailure Integrator::failure(const std::string& headline) {
@@ -303,7 +310,12 @@ void Integrator::start_segment(double start, bool first) {
     check(CVodeSetErrHandlerFn(cv.memory, capture_error, cvode_.get()), "CVodeSetErrHandlerFn");
     check(CVodeSVtolerances(cv.memory, settings_.relative_tolerance, cv.tolerances),
           "CVodeSVtolerances");
-    attach_linear_solver();
+    if (settings_.method == IntegrationMethod::adams) {
+      cv.nonlinear_solver = SUNNonlinSol_FixedPoint(cv.state, 0, cv.context);
+      check(CVodeSetNonlinearSolver(cv.memory, cv.nonlinear_solver), "CVodeSetNonlinearSolver");
+    } else {
+      attach_linear_solver();
+    }
     check(CVodeSetMaxNumSteps(cv.memory, -1), "CVodeSetMaxNumSteps");
     if (settings_.max_step > 0)
       check(CVodeSetMaxStep(cv.memory, settings_.max_step), "CVodeSetMaxStep");
@@ -315,13 +327,13 @@ void Integrator::start_segment(double start, bool first) {
     check(CVodeSetInitStep(cv.memory, settings_.initial_step), "CVodeSetInitStep");
 }
 
-SolverStatistics Integrator::run(double t0, double t_end, double output_interval, OutputSink& sink,
+SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output, OutputSink& sink,
                                  const Progress& progress) {
   auto& cv = *cvode_;
   double* state = N_VGetArrayPointer(cv.state);
   system_.initialize(t0, state);
   statistics_ = {};
-  OutputGrid grid(t0, t_end, output_interval);
+  OutputGrid grid(std::max(t0, output.start), t_end, output.interval);
   long steps_taken = 0;
   int collapsed_steps = 0;
 

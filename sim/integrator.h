@@ -1,6 +1,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <memory>
 #include <span>
 #include <stdexcept>
@@ -17,10 +18,16 @@ struct CvodeHandles;
 
 enum class LinearSolverKind { dense, band, klu };
 
+// BDF with Newton iteration for stiff systems (the muscles: thermal and mechanical time
+// constants seconds apart); Adams-Moulton with fixed-point iteration for non-stiff oscillatory
+// ones (an undamped winding chain, whose every mode must be resolved anyway).
+enum class IntegrationMethod { bdf, adams };
+
 struct SolverSettings {
   double relative_tolerance = 1e-6;
   std::vector<double> absolute_tolerances;  // one per state; empty: the states' defaults
-  LinearSolverKind linear_solver = LinearSolverKind::dense;
+  IntegrationMethod method = IntegrationMethod::bdf;
+  LinearSolverKind linear_solver = LinearSolverKind::dense;  // BDF's Newton iteration only
   double max_step = 0.0;      // 0: no limit
   double initial_step = 0.0;  // 0: CVODE's estimate
   long max_steps = 50'000'000;
@@ -38,6 +45,14 @@ struct SolverStatistics {
   long nonlinear_convergence_failures = 0;
   long segments = 0;  // hard stops + 1
   long output_samples = 0;
+};
+
+// When to record: every `interval` from `start` (default: the start of the run), and the end.
+struct OutputTimes {
+  OutputTimes(double every, double from = -std::numeric_limits<double>::infinity())  // NOLINT: implicit
+      : interval(every), start(from) {}
+  double interval;
+  double start;
 };
 
 // Receives the outputs at each output time.
@@ -71,9 +86,9 @@ class Integrator {
 
   using Progress = std::function<void(double time, long steps)>;
 
-  // Integrates from t0 to t_end and records outputs at t0 + k * output_interval (and t_end).
+  // Integrates from t0 to t_end and records outputs at start + k * interval (and t_end).
   // Throws SolverFailure with the CVODE flag, the time and the worst state entries.
-  SolverStatistics run(double t0, double t_end, double output_interval, OutputSink& sink,
+  SolverStatistics run(double t0, double t_end, OutputTimes output, OutputSink& sink,
                        const Progress& progress = {});
 
   const std::vector<double>& final_state() const { return final_state_; }

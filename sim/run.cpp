@@ -40,8 +40,9 @@ RunOutcome run_scenario(Scenario& scenario, const std::string& output_path,
     Hdf5Recorder recorder(output_path, *scenario.system, metadata);
     Integrator integrator(*scenario.system, scenario.solver);
     try {
-      outcome.statistics = integrator.run(0.0, scenario.settings.duration,
-                                          scenario.settings.output_interval, recorder, progress);
+      outcome.statistics = integrator.run(
+          0.0, scenario.settings.duration,
+          {scenario.settings.output_interval, scenario.settings.output_start}, recorder, progress);
       recorder.finish(outcome.statistics);
       outcome.output_path = output_path;
       outcome.succeeded = true;

@@ -5,6 +5,7 @@
 #include "controllers/joule_drive.h"
 #include "controllers/signals/signal_config.h"
 #include "models/coil_impedance.h"
+#include "models/coil_spring_chain.h"
 #include "models/hanging_mass.h"
 #include "models/imposed_load.h"
 #include "models/sensor.h"
@@ -22,7 +23,7 @@ constexpr const char* kLoad = "load";
 
 ScenarioSettings read_settings(const ConfigNode& root) {
   ScenarioSettings settings;
-  root.declare({"scenario", "output", "solver", "muscle", "drive", "load"});
+  root.declare({"scenario", "output", "solver", "muscle", "drive", "load", "spring"});
   const ConfigNode scenario = root.at("scenario");
   scenario.declare({"name", "description", "duration", "seed"});
   settings.name = scenario.text("name");
@@ -35,8 +36,14 @@ ScenarioSettings read_settings(const ConfigNode& root) {
   settings.seed =
       static_cast<std::uint64_t>(scenario.integer_or("seed", 0, ValueCheck::non_negative()));
   const ConfigNode output = root.at("output");
+  output.declare({"rate", "start"});
   const double rate = output.quantity("rate", "Hz", ValueCheck::positive());
   settings.output_interval = 1.0 / rate;
+  settings.output_start = output.quantity_or("start", "s", 0.0, ValueCheck::non_negative());
+  if (settings.output_start >= settings.duration) {
+    output.at("start").fail("expected a start before the end of the scenario (" +
+                            std::to_string(settings.duration) + " s)");
+  }
   return settings;
 }
 
@@ -185,7 +192,9 @@ SolverSettings read_solver(const ConfigNode& root, const System& system) {
       settings.absolute_tolerances.push_back(state.absolute_tolerance);
     return settings;
   }
-  solver->declare({"rtol", "atol", "linear_solver", "max_step", "initial_step", "max_steps"});
+  solver->declare({"method", "rtol", "atol", "linear_solver", "max_step", "initial_step", "max_steps"});
+  settings.method = solver->choice_or("method", {"bdf", "adams"}, "bdf") == "adams" ? IntegrationMethod::adams
+                                                                                   : IntegrationMethod::bdf;
   settings.relative_tolerance =
       solver->number_or("rtol", settings.relative_tolerance, ValueCheck::between(1e-14, 0.1));
   const std::string kind = solver->choice_or("linear_solver", {"dense", "band", "klu"}, "dense");
@@ -199,6 +208,25 @@ SolverSettings read_solver(const ConfigNode& root, const System& system) {
   return settings;
 }
 
+// The muscle with its drive and load (thesis ch. 6-7).
+void build_muscle_system(System& system, const ConfigNode& root, const SignalContext& signals) {
+  const ConfigNode load = root.at("load");
+  const std::string load_type = load.choice("type", {"deflection", "force", "hanging_mass"});
+  const auto drive_mode =
+      load_type == "force" ? SlsMechanics::Drive::force : SlsMechanics::Drive::deflection;
+  const MuscleSummary muscle = build_muscle(system, root.at("muscle"), drive_mode, signals);
+  auto& drive = system.add(JouleDrive::from_config(kDrive, root.at("drive"), signals));
+  if (drive.needs_resistance()) system.connect(drive, "heater_resistance", "muscle.resistance");
+  build_load(system, load, load_type, muscle, signals);
+}
+
+// A metal coil spring between two imposed end motions (thesis ch. 4).
+void build_spring_system(System& system, const ConfigNode& spring, const SignalContext& signals) {
+  spring.declare({"windings", "rest_length", "mass", "stiffness", "damping_ratio", "initial_velocity",
+                  "first_end", "second_end"});
+  system.add(CoilSpringChain::from_config("spring", spring, signals));
+}
+
 }  // namespace
 
 Scenario build_scenario(const ConfigNode& root) {
@@ -208,14 +236,13 @@ Scenario build_scenario(const ConfigNode& root) {
   scenario.system = std::make_unique<System>();
   System& system = *scenario.system;
 
-  const ConfigNode load = root.at("load");
-  const std::string load_type = load.choice("type", {"deflection", "force", "hanging_mass"});
-  const auto drive_mode =
-      load_type == "force" ? SlsMechanics::Drive::force : SlsMechanics::Drive::deflection;
-  const MuscleSummary muscle = build_muscle(system, root.at("muscle"), drive_mode, signals);
-  auto& drive = system.add(JouleDrive::from_config(kDrive, root.at("drive"), signals));
-  if (drive.needs_resistance()) system.connect(drive, "heater_resistance", "muscle.resistance");
-  build_load(system, load, load_type, muscle, signals);
+  if (root.has("spring")) {
+    build_spring_system(system, root.at("spring"), signals);
+  } else if (root.has("muscle") || root.has("drive") || root.has("load")) {
+    build_muscle_system(system, root, signals);
+  } else {
+    root.fail("expected a 'muscle' section (with 'drive' and 'load') or a 'spring' section");
+  }
 
   try {
     system.assemble();

@@ -17,6 +17,7 @@ struct ScenarioSettings {
   double duration = 0.0;  // [s]
   std::uint64_t seed = 0;
   double output_interval = 0.0;  // [s]
+  double output_start = 0.0;     // [s] first recorded time
 };
 
 // A scenario file turned into an assembled system, ready to integrate.

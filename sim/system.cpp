@@ -51,7 +51,8 @@ void System::assemble() {
         throw std::logic_error("two components publish the output '" +
                                qualified(component, declared.name) + "'");
       }
-      channels_.push_back({component.group(), declared.name, declared.unit, signal_count++});
+      channels_.push_back(
+          {component.group(), declared.name, declared.unit, signal_count++, declared.observed});
       signal_owner_.push_back(static_cast<int>(c));
     }
     component.input_signal_index_.assign(component.inputs().size(), -1);
@@ -72,6 +73,11 @@ void System::assemble() {
       throw std::logic_error("no component publishes '" + connection.source + "' (needed by " +
                              connection.consumer->group() + "/" + connection.consumer->kind() +
                              ")");
+    }
+    if (channels_[static_cast<std::size_t>(source)].observed && !input->sampled) {
+      throw std::logic_error("'" + connection.source + "' is an observed output; only sampled inputs may read it (" +
+                             connection.consumer->group() + "/" + connection.consumer->kind() + " input '" +
+                             connection.input + "')");
     }
     auto& consumer = const_cast<Component&>(*connection.consumer);
     consumer.input_signal_index_[static_cast<std::size_t>(input - declared.begin())] = source;
@@ -143,6 +149,7 @@ void System::initialize(double time, double* state) {
 void System::evaluate_outputs(double time, double signal_time, const double* state) {
   const Evaluation now = evaluation(time, signal_time, state);
   for (const Component* component : evaluation_order_) component->compute_outputs(now);
+  for (const Component* component : evaluation_order_) component->compute_observations(now);
 }
 
 void System::evaluate_derivatives(double time, double signal_time, const double* state,

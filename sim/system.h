@@ -23,6 +23,7 @@ struct ChannelInfo {
   std::string name;
   std::string unit;
   int signal_index;
+  bool observed;
 };
 
 // Assembles components into one ODE system y' = f(t, y). Owns the components, assigns each its
@@ -57,7 +58,7 @@ class System {
   int signal_index(std::string_view output) const;  // -1 if absent
 
   void initialize(double time, double* state);
-  // Computes every output; afterwards signals() holds them.
+  // Computes every output, observed ones included; afterwards signals() holds them.
   void evaluate_outputs(double time, double signal_time, const double* state);
   // f(t, y). Allocation-free.
   void evaluate_derivatives(double time, double signal_time, const double* state,

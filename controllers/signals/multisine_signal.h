@@ -26,7 +26,7 @@ class MultisineSignal final : public Signal {
   MultisineSignal with_equal_amplitudes(double offset, double amplitude) const;
 
   double value(double time) const override;
-  double slope(double time) const;
+  double slope(double time) const override;
   SignalDescription describe() const override;
   std::pair<double, double> range(double begin, double end) const override;
   // max |m - a0| / rms(m - a0) over [0, duration]

@@ -14,6 +14,7 @@ class PiecewiseConstantSignal final : public Signal {
                           SignalDescription description = {});
   double value(double time) const override;
   double next_breakpoint_after(double time) const override;
+  double slope(double) const override { return 0.0; }
   SignalDescription describe() const override;
   std::pair<double, double> range(double begin, double end) const override;
 

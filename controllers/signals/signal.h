@@ -22,6 +22,9 @@ class Signal {
  public:
   virtual ~Signal() = default;
   virtual double value(double time) const = 0;
+  // d value / dt (right derivative). The default differentiates numerically; smooth signals
+  // override it exactly.
+  virtual double slope(double time) const;
   // The first time strictly after `time` where the signal or its slope jumps.
   virtual double next_breakpoint_after(double time) const;
   virtual SignalDescription describe() const = 0;

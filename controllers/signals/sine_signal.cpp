@@ -12,6 +12,11 @@ double SineSignal::value(double time) const {
   return offset_ + amplitude_ * std::sin(2.0 * std::numbers::pi * frequency_ * time + phase_);
 }
 
+double SineSignal::slope(double time) const {
+  const double omega = 2.0 * std::numbers::pi * frequency_;
+  return amplitude_ * omega * std::cos(omega * time + phase_);
+}
+
 SignalDescription SineSignal::describe() const {
   return {"sine",
           {{"offset", offset_},

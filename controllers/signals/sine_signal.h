@@ -9,6 +9,7 @@ class SineSignal final : public Signal {
  public:
   SineSignal(double offset, double amplitude, double frequency, double phase);
   double value(double time) const override;
+  double slope(double time) const override;
   SignalDescription describe() const override;
   std::pair<double, double> range(double begin, double end) const override;
 

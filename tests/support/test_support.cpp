@@ -52,7 +52,8 @@ Trace simulate(Scenario& scenario) {
   Integrator integrator(*scenario.system, scenario.solver);
   Trace trace;
   trace.statistics =
-      integrator.run(0.0, scenario.settings.duration, scenario.settings.output_interval, sink);
+      integrator.run(0.0, scenario.settings.duration,
+                     {scenario.settings.output_interval, scenario.settings.output_start}, sink);
   trace.time = std::move(sink.time);
   trace.channels = std::move(sink.channels);
   return trace;

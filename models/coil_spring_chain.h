@@ -1,0 +1,69 @@
+#pragma once
+
+#include <Eigen/Dense>
+#include <memory>
+
+#include "controllers/signals/signal_config.h"
+#include "sim/component.h"
+
+namespace tcpmsim {
+
+// A coil spring as N lumped winding masses (thesis ch. 4, Fig. 4.1), moving axially between
+// two imposed end positions u1(t), u2(t). Element e joins node e-1 and node e, with the ends
+// as nodes -1 and N: the two end elements have stiffness 2Nk and rest length l0/(2N), the
+// N-1 inner ones Nk and l0/N, so the series stiffness is k and a statically stretched spring
+// has uniform windings. (4.4)-(4.7):
+//     (m/N) d2xi_i/dt2 = T_{i+1} - T_i,   T_e = k_e (S_e - s_e) + c_e dS_e/dt,
+// with S_e the element length. F_i = T_0 (input end) and F_o = T_N (output end) are tensions.
+// Material damping is stiffness-proportional, c_e = beta k_e with beta = 2 zeta_1 / omega_1,
+// which damps the first clamped mode (omega_1 = pi sqrt(k/m), (4.3)) by zeta_1.
+// States are interleaved (xi_0, v_0, xi_1, v_1, ...) so the Jacobian is banded.
+struct CoilSpringParameters {
+  int windings = 0;           // N
+  double rest_length = 0.0;   // l0 [m]
+  double mass = 0.0;          // m [kg]
+  double stiffness = 0.0;     // k [N/m]
+  double damping_ratio = 0.0; // zeta_1
+  enum class VelocityProfile { rest, uniform, linear };
+  VelocityProfile initial_profile = VelocityProfile::rest;
+  double initial_velocity = 0.0;  // uniform: every winding; linear: 0 at u1 rising to this at u2
+};
+
+class CoilSpringChain final : public Component {
+ public:
+  CoilSpringChain(std::string group, CoilSpringParameters parameters, std::unique_ptr<Signal> first_end,
+                  std::unique_ptr<Signal> second_end);
+  static std::unique_ptr<CoilSpringChain> from_config(const std::string& group, const ConfigNode& node,
+                                                      const SignalContext& signals);
+
+  std::vector<StateDeclaration> states() const override;
+  std::vector<OutputDeclaration> outputs() const override;
+  void initialize(const Evaluation& evaluation, std::span<double> own_state) const override;
+  void compute_outputs(const Evaluation& evaluation) const override;
+  void compute_derivatives(const Evaluation& evaluation, double* derivatives) const override;
+  double next_breakpoint_after(double t) const override;
+  Dependencies derivative_dependencies(int state_index) const override;
+  std::vector<SignalRecord> signal_records() const override;
+
+  const CoilSpringParameters& parameters() const { return parameters_; }
+  // The linear model's matrices for the windings, M xi'' + C xi' + K xi = forcing by the
+  // ends: for modal and frequency-response analysis.
+  Eigen::MatrixXd mass_matrix() const;
+  Eigen::MatrixXd stiffness_matrix() const;
+  double element_stiffness(int element) const;
+  double first_mode_frequency() const;  // pi sqrt(k/m) [rad/s], (4.3)
+
+ private:
+  static constexpr int kMechanicalOutputs = 6;  // then one position per winding
+  enum Output { kInputForce, kOutputForce, kFirstEnd, kSecondEnd, kDeflection, kDeflectionForce };
+  double position(const Evaluation& evaluation, int winding) const { return state(evaluation, 2 * winding); }
+  double end_position(int end, double time) const;
+  double tension(const Evaluation& evaluation, int element) const;
+
+  CoilSpringParameters parameters_;
+  std::unique_ptr<Signal> first_end_;
+  std::unique_ptr<Signal> second_end_;
+  double damping_time_ = 0.0;  // beta [s]
+};
+
+}  // namespace tcpmsim
