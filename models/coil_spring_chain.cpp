@@ -7,7 +7,8 @@
 namespace tcpmsim {
 
 CoilSpringChain::CoilSpringChain(std::string group, CoilSpringParameters parameters,
-                                 std::unique_ptr<Signal> first_end, std::unique_ptr<Signal> second_end)
+                                 std::unique_ptr<Signal> first_end,
+                                 std::unique_ptr<Signal> second_end)
     : Component(std::move(group), "coil_spring_chain"),
       parameters_(parameters),
       first_end_(std::move(first_end)),
@@ -15,7 +16,8 @@ CoilSpringChain::CoilSpringChain(std::string group, CoilSpringParameters paramet
   damping_time_ = 2.0 * parameters_.damping_ratio / first_mode_frequency();
 }
 
-std::unique_ptr<CoilSpringChain> CoilSpringChain::from_config(const std::string& group, const ConfigNode& node,
+std::unique_ptr<CoilSpringChain> CoilSpringChain::from_config(const std::string& group,
+                                                              const ConfigNode& node,
                                                               const SignalContext& signals) {
   CoilSpringParameters p;
   p.windings = static_cast<int>(node.integer("windings", ValueCheck::at_least(1)));
@@ -30,7 +32,8 @@ std::unique_ptr<CoilSpringChain> CoilSpringChain::from_config(const std::string&
                                              : CoilSpringParameters::VelocityProfile::linear;
     p.initial_velocity = velocity->quantity("value", "m/s");
   }
-  return std::make_unique<CoilSpringChain>(group, p, read_signal(node.at("first_end"), "m", signals),
+  return std::make_unique<CoilSpringChain>(group, p,
+                                           read_signal(node.at("first_end"), "m", signals),
                                            read_signal(node.at("second_end"), "m", signals));
 }
 
@@ -57,8 +60,9 @@ std::vector<StateDeclaration> CoilSpringChain::states() const {
 }
 
 std::vector<OutputDeclaration> CoilSpringChain::outputs() const {
-  std::vector<OutputDeclaration> declared{{"input_force", "N"}, {"output_force", "N"}, {"first_end", "m"},
-                                          {"second_end", "m"},  {"deflection", "m"},   {"deflection_force", "N"}};
+  std::vector<OutputDeclaration> declared{{"input_force", "N"}, {"output_force", "N"},
+                                          {"first_end", "m"},   {"second_end", "m"},
+                                          {"deflection", "m"},  {"deflection_force", "N"}};
   char name[32];
   for (int i = 0; i < parameters_.windings; ++i) {
     std::snprintf(name, sizeof name, "winding_%02d", i + 1);
@@ -73,7 +77,8 @@ double CoilSpringChain::end_position(int end, double time) const {
 
 void CoilSpringChain::initialize(const Evaluation& evaluation, std::span<double> own_state) const {
   // Static equilibrium between the initial end positions: uniform windings.
-  const double u1 = end_position(0, evaluation.signal_time), u2 = end_position(1, evaluation.signal_time);
+  const double u1 = end_position(0, evaluation.signal_time),
+               u2 = end_position(1, evaluation.signal_time);
   const int n = parameters_.windings;
   for (int i = 0; i < n; ++i) {
     const double fraction = (i + 0.5) / n;
@@ -97,15 +102,18 @@ double CoilSpringChain::tension(const Evaluation& evaluation, int element) const
   const double stiffness = element_stiffness(element);
   double tension = stiffness * (right - left - rest);
   if (damping_time_ > 0.0) {
-    const double left_speed = element == 0 ? first_end_->slope(t) : state(evaluation, 2 * element - 1);
-    const double right_speed = element == n ? second_end_->slope(t) : state(evaluation, 2 * element + 1);
+    const double left_speed =
+        element == 0 ? first_end_->slope(t) : state(evaluation, 2 * element - 1);
+    const double right_speed =
+        element == n ? second_end_->slope(t) : state(evaluation, 2 * element + 1);
     tension += damping_time_ * stiffness * (right_speed - left_speed);
   }
   return tension;
 }
 
 void CoilSpringChain::compute_outputs(const Evaluation& evaluation) const {
-  const double u1 = end_position(0, evaluation.signal_time), u2 = end_position(1, evaluation.signal_time);
+  const double u1 = end_position(0, evaluation.signal_time),
+               u2 = end_position(1, evaluation.signal_time);
   const double deflection = u2 - u1 - parameters_.rest_length;
   set_output(evaluation, kInputForce, tension(evaluation, 0));  // (4.7)
   set_output(evaluation, kOutputForce, tension(evaluation, parameters_.windings));
@@ -113,7 +121,8 @@ void CoilSpringChain::compute_outputs(const Evaluation& evaluation) const {
   set_output(evaluation, kSecondEnd, u2);
   set_output(evaluation, kDeflection, deflection);
   set_output(evaluation, kDeflectionForce, parameters_.stiffness * deflection);  // F_x
-  for (int i = 0; i < parameters_.windings; ++i) set_output(evaluation, kMechanicalOutputs + i, position(evaluation, i));
+  for (int i = 0; i < parameters_.windings; ++i)
+    set_output(evaluation, kMechanicalOutputs + i, position(evaluation, i));
 }
 
 void CoilSpringChain::compute_derivatives(const Evaluation& evaluation, double* derivatives) const {
@@ -132,9 +141,11 @@ Dependencies CoilSpringChain::derivative_dependencies(int state_index) const {
   const int winding = state_index / 2;
   if (state_index % 2 == 0) return {{state_index + 1}, {}};  // dxi/dt = v
   Dependencies dependencies;
-  for (int neighbour = std::max(0, winding - 1); neighbour <= std::min(parameters_.windings - 1, winding + 1); ++neighbour) {
+  for (int neighbour = std::max(0, winding - 1);
+       neighbour <= std::min(parameters_.windings - 1, winding + 1); ++neighbour) {
     dependencies.states.push_back(2 * neighbour);
-    if (damping_time_ > 0.0 || neighbour == winding) dependencies.states.push_back(2 * neighbour + 1);
+    if (damping_time_ > 0.0 || neighbour == winding)
+      dependencies.states.push_back(2 * neighbour + 1);
   }
   return dependencies;
 }

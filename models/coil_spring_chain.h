@@ -19,11 +19,11 @@ namespace tcpmsim {
 // which damps the first clamped mode (omega_1 = pi sqrt(k/m), (4.3)) by zeta_1.
 // States are interleaved (xi_0, v_0, xi_1, v_1, ...) so the Jacobian is banded.
 struct CoilSpringParameters {
-  int windings = 0;           // N
-  double rest_length = 0.0;   // l0 [m]
-  double mass = 0.0;          // m [kg]
-  double stiffness = 0.0;     // k [N/m]
-  double damping_ratio = 0.0; // zeta_1
+  int windings = 0;            // N
+  double rest_length = 0.0;    // l0 [m]
+  double mass = 0.0;           // m [kg]
+  double stiffness = 0.0;      // k [N/m]
+  double damping_ratio = 0.0;  // zeta_1
   enum class VelocityProfile { rest, uniform, linear };
   VelocityProfile initial_profile = VelocityProfile::rest;
   double initial_velocity = 0.0;  // uniform: every winding; linear: 0 at u1 rising to this at u2
@@ -31,9 +31,10 @@ struct CoilSpringParameters {
 
 class CoilSpringChain final : public Component {
  public:
-  CoilSpringChain(std::string group, CoilSpringParameters parameters, std::unique_ptr<Signal> first_end,
-                  std::unique_ptr<Signal> second_end);
-  static std::unique_ptr<CoilSpringChain> from_config(const std::string& group, const ConfigNode& node,
+  CoilSpringChain(std::string group, CoilSpringParameters parameters,
+                  std::unique_ptr<Signal> first_end, std::unique_ptr<Signal> second_end);
+  static std::unique_ptr<CoilSpringChain> from_config(const std::string& group,
+                                                      const ConfigNode& node,
                                                       const SignalContext& signals);
 
   std::vector<StateDeclaration> states() const override;
@@ -51,13 +52,15 @@ class CoilSpringChain final : public Component {
   Eigen::MatrixXd mass_matrix() const;
   Eigen::MatrixXd stiffness_matrix() const;
   double element_stiffness(int element) const;
-  double first_mode_frequency() const;  // pi sqrt(k/m) [rad/s], (4.3)
+  double first_mode_frequency() const;              // pi sqrt(k/m) [rad/s], (4.3)
+  double end_position(int end, double time) const;  // u1 (end 0) or u2 (end 1) [m]
 
  private:
   static constexpr int kMechanicalOutputs = 6;  // then one position per winding
   enum Output { kInputForce, kOutputForce, kFirstEnd, kSecondEnd, kDeflection, kDeflectionForce };
-  double position(const Evaluation& evaluation, int winding) const { return state(evaluation, 2 * winding); }
-  double end_position(int end, double time) const;
+  double position(const Evaluation& evaluation, int winding) const {
+    return state(evaluation, 2 * winding);
+  }
   double tension(const Evaluation& evaluation, int element) const;
 
   CoilSpringParameters parameters_;

@@ -6,6 +6,7 @@
 #include "controllers/signals/signal_config.h"
 #include "models/coil_impedance.h"
 #include "models/coil_spring_chain.h"
+#include "models/coil_spring_inductance.h"
 #include "models/hanging_mass.h"
 #include "models/imposed_load.h"
 #include "models/sensor.h"
@@ -192,9 +193,11 @@ SolverSettings read_solver(const ConfigNode& root, const System& system) {
       settings.absolute_tolerances.push_back(state.absolute_tolerance);
     return settings;
   }
-  solver->declare({"method", "rtol", "atol", "linear_solver", "max_step", "initial_step", "max_steps"});
-  settings.method = solver->choice_or("method", {"bdf", "adams"}, "bdf") == "adams" ? IntegrationMethod::adams
-                                                                                   : IntegrationMethod::bdf;
+  solver->declare(
+      {"method", "rtol", "atol", "linear_solver", "max_step", "initial_step", "max_steps"});
+  settings.method = solver->choice_or("method", {"bdf", "adams"}, "bdf") == "adams"
+                        ? IntegrationMethod::adams
+                        : IntegrationMethod::bdf;
   settings.relative_tolerance =
       solver->number_or("rtol", settings.relative_tolerance, ValueCheck::between(1e-14, 0.1));
   const std::string kind = solver->choice_or("linear_solver", {"dense", "band", "klu"}, "dense");
@@ -222,9 +225,18 @@ void build_muscle_system(System& system, const ConfigNode& root, const SignalCon
 
 // A metal coil spring between two imposed end motions (thesis ch. 4).
 void build_spring_system(System& system, const ConfigNode& spring, const SignalContext& signals) {
-  spring.declare({"windings", "rest_length", "mass", "stiffness", "damping_ratio", "initial_velocity",
-                  "first_end", "second_end"});
-  system.add(CoilSpringChain::from_config("spring", spring, signals));
+  spring.declare({"windings", "rest_length", "mass", "stiffness", "damping_ratio",
+                  "initial_velocity", "first_end", "second_end", "inductance"});
+  auto& chain = system.add(CoilSpringChain::from_config("spring", spring, signals));
+  const auto inductance = spring.find("inductance");
+  if (!inductance) return;
+  const auto& p = chain.parameters();
+  const double initial_length = chain.end_position(1, 0.0) - chain.end_position(0, 0.0);
+  auto& sensor = system.add(std::make_unique<CoilSpringInductance>(
+      "spring", CoilSpringInductance::parameters_from_config(*inductance, p.windings, p.rest_length,
+                                                             p.stiffness, initial_length)));
+  for (const auto& input : sensor.inputs())
+    system.connect(sensor, input.name, "spring." + input.name);
 }
 
 }  // namespace
