@@ -23,6 +23,10 @@ double Component::next_breakpoint_after(double) const {
 
 void Component::at_breakpoint(const Evaluation&) {}
 
+void Component::event_functions(const Evaluation&, double*) const {}
+
+void Component::at_event(int, const Evaluation&) {}
+
 namespace {
 std::vector<int> all_indices(std::size_t count) {
   std::vector<int> indices(count);

@@ -95,9 +95,23 @@ class Component {
   // switching edges, sample instants). The integrator stops there and restarts.
   virtual double next_breakpoint_after(double t) const;
 
-  // Called at a breakpoint, after outputs were computed with the left-limit inputs. Sampled
-  // systems update their held values here.
+  // Called at a breakpoint (and once at the start of a run), after outputs were computed with
+  // the left-limit inputs. Sampled systems update their held values here.
   virtual void at_breakpoint(const Evaluation& evaluation);
+
+  // Within one instant, components act in this order: instruments (0) publish a measurement,
+  // estimators (1) use it, controllers (2) use the estimates, actuators (3) apply commands.
+  enum class SamplingStage { instrument = 0, estimator = 1, controller = 2, actuator = 3 };
+  virtual SamplingStage sampling_stage() const { return SamplingStage::instrument; }
+
+  // Zero-crossing events: g_k(t, y) whose sign changes CVODE locates to within rounding. A
+  // component with events writes its g values and reacts to a located crossing; the state is
+  // continuous across it (a discontinuity must be a breakpoint).
+  virtual int event_count() const { return 0; }
+  // +1: only rising crossings, -1: only falling, 0: both.
+  virtual int event_direction(int /*index*/) const { return 0; }
+  virtual void event_functions(const Evaluation& evaluation, double* values) const;
+  virtual void at_event(int index, const Evaluation& evaluation);
 
   // Structural dependencies, for sparse and banded Jacobians. The defaults say "everything
   // the component owns or reads", which is exact for small components.

@@ -8,10 +8,10 @@
 #include <sunlinsol/sunlinsol_band.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunlinsol/sunlinsol_klu.h>
-#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 #include <sunmatrix/sunmatrix_band.h>
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
 #include <algorithm>
 #include <cmath>
@@ -46,6 +46,7 @@ struct detail::CvodeHandles {
   std::vector<std::vector<int>> column_groups;
   std::vector<double> perturbed;
   std::vector<double> perturbed_derivatives;
+  std::vector<int> event_flags;
 
   ~CvodeHandles() {
     if (memory) CVodeFree(&memory);
@@ -123,6 +124,12 @@ int right_hand_side(realtype t, N_Vector y, N_Vector ydot, void* user_data) {
       return kRecoverable;
     }
   }
+  return 0;
+}
+
+int event_functions(realtype t, N_Vector y, realtype* values, void* user_data) {
+  auto& cv = cvode_of(user_data);
+  cv.system->evaluate_events(t, cv.signal_time(t), N_VGetArrayPointer(y), values);
   return 0;
 }
 
@@ -208,7 +215,8 @@ Integrator::Integrator(System& system, SolverSettings settings)
                         ? system_.states()[index].absolute_tolerance
                         : settings_.absolute_tolerances.at(index);
   }
-  cv.memory = CVodeCreate(settings_.method == IntegrationMethod::adams ? CV_ADAMS : CV_BDF, cv.context);
+  cv.memory =
+      CVodeCreate(settings_.method == IntegrationMethod::adams ? CV_ADAMS : CV_BDF, cv.context);
   if (!cv.memory) throw std::runtime_error("CVodeCreate failed");
 }
 
@@ -319,6 +327,12 @@ void Integrator::start_segment(double start, bool first) {
     check(CVodeSetMaxNumSteps(cv.memory, -1), "CVodeSetMaxNumSteps");
     if (settings_.max_step > 0)
       check(CVodeSetMaxStep(cv.memory, settings_.max_step), "CVodeSetMaxStep");
+    if (system_.event_count() > 0) {
+      check(CVodeRootInit(cv.memory, system_.event_count(), event_functions), "CVodeRootInit");
+      std::vector<int> directions = system_.event_directions();
+      check(CVodeSetRootDirection(cv.memory, directions.data()), "CVodeSetRootDirection");
+      cv.event_flags.assign(directions.size(), 0);
+    }
   } else {
     accumulate_statistics();  // CVodeReInit zeroes CVODE's counters
     check(CVodeReInit(cv.memory, start, cv.state), "CVodeReInit");
@@ -332,6 +346,7 @@ SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output, Ou
   auto& cv = *cvode_;
   double* state = N_VGetArrayPointer(cv.state);
   system_.initialize(t0, state);
+  system_.at_breakpoint(t0, t0, state);  // sampled components take their first sample
   statistics_ = {};
   OutputGrid grid(std::max(t0, output.start), t_end, output.interval);
   long steps_taken = 0;
@@ -358,6 +373,11 @@ SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output, Ou
       const int flag = CVode(cv.memory, stop, cv.state, &reached, CV_ONE_STEP);
       if (flag < 0) throw failure(std::string("CVODE failed with ") + CVodeGetReturnFlagName(flag));
       if (flag == CV_TSTOP_RETURN) reached = stop;
+      if (flag == CV_ROOT_RETURN) {
+        ++statistics_.events;
+        check(CVodeGetRootInfo(cv.memory, cv.event_flags.data()), "CVodeGetRootInfo");
+        system_.at_events(reached, cv.signal_time(reached), state, cv.event_flags.data());
+      }
       if (++steps_taken > settings_.max_steps) {
         throw failure("more than " + std::to_string(settings_.max_steps) +
                       " solver steps (raise solver.max_steps if this is expected)");

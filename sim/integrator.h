@@ -28,8 +28,8 @@ struct SolverSettings {
   std::vector<double> absolute_tolerances;  // one per state; empty: the states' defaults
   IntegrationMethod method = IntegrationMethod::bdf;
   LinearSolverKind linear_solver = LinearSolverKind::dense;  // BDF's Newton iteration only
-  double max_step = 0.0;      // 0: no limit
-  double initial_step = 0.0;  // 0: CVODE's estimate
+  double max_step = 0.0;                                     // 0: no limit
+  double initial_step = 0.0;                                 // 0: CVODE's estimate
   long max_steps = 50'000'000;
 };
 
@@ -44,12 +44,14 @@ struct SolverStatistics {
   long nonlinear_iterations = 0;
   long nonlinear_convergence_failures = 0;
   long segments = 0;  // hard stops + 1
+  long events = 0;    // located zero crossings
   long output_samples = 0;
 };
 
 // When to record: every `interval` from `start` (default: the start of the run), and the end.
 struct OutputTimes {
-  OutputTimes(double every, double from = -std::numeric_limits<double>::infinity())  // NOLINT: implicit
+  OutputTimes(double every,
+              double from = -std::numeric_limits<double>::infinity())  // NOLINT: implicit
       : interval(every), start(from) {}
   double interval;
   double start;

@@ -75,9 +75,10 @@ void System::assemble() {
                              ")");
     }
     if (channels_[static_cast<std::size_t>(source)].observed && !input->sampled) {
-      throw std::logic_error("'" + connection.source + "' is an observed output; only sampled inputs may read it (" +
-                             connection.consumer->group() + "/" + connection.consumer->kind() + " input '" +
-                             connection.input + "')");
+      throw std::logic_error("'" + connection.source +
+                             "' is an observed output; only sampled inputs may read it (" +
+                             connection.consumer->group() + "/" + connection.consumer->kind() +
+                             " input '" + connection.input + "')");
     }
     auto& consumer = const_cast<Component&>(*connection.consumer);
     consumer.input_signal_index_[static_cast<std::size_t>(input - declared.begin())] = source;
@@ -92,6 +93,17 @@ void System::assemble() {
     }
   }
   order_by_feedthrough();
+  sampling_order_ = evaluation_order_;
+  std::stable_sort(sampling_order_.begin(), sampling_order_.end(),
+                   [](const Component* a, const Component* b) {
+                     return a->sampling_stage() < b->sampling_stage();
+                   });
+  event_offsets_.clear();
+  event_count_ = 0;
+  for (const auto& component : components_) {
+    event_offsets_.push_back(event_count_);
+    event_count_ += component->event_count();
+  }
   assembled_ = true;
 }
 
@@ -172,7 +184,42 @@ double System::next_breakpoint_after(double time) const {
 void System::at_breakpoint(double time, double left_limit, const double* state) {
   evaluate_outputs(time, left_limit, state);
   const Evaluation now = evaluation(time, left_limit, state);
-  for (Component* component : evaluation_order_) component->at_breakpoint(now);
+  // Each component republishes its outputs right after acting, so a controller sampling after
+  // an estimator at the same instant sees the new estimate.
+  for (Component* component : sampling_order_) {
+    component->at_breakpoint(now);
+    component->compute_outputs(now);
+    component->compute_observations(now);
+  }
+  evaluate_outputs(time, left_limit, state);
+}
+
+std::vector<int> System::event_directions() const {
+  std::vector<int> directions;
+  for (const auto& component : components_) {
+    for (int k = 0; k < component->event_count(); ++k)
+      directions.push_back(component->event_direction(k));
+  }
+  return directions;
+}
+
+void System::evaluate_events(double time, double signal_time, const double* state, double* values) {
+  const Evaluation now = evaluation(time, signal_time, state);
+  for (const Component* component : evaluation_order_) component->compute_outputs(now);
+  for (std::size_t c = 0; c < components_.size(); ++c) {
+    if (components_[c]->event_count() > 0)
+      components_[c]->event_functions(now, values + event_offsets_[c]);
+  }
+}
+
+void System::at_events(double time, double signal_time, const double* state, const int* flags) {
+  evaluate_outputs(time, signal_time, state);
+  const Evaluation now = evaluation(time, signal_time, state);
+  for (std::size_t c = 0; c < components_.size(); ++c) {
+    for (int k = 0; k < components_[c]->event_count(); ++k) {
+      if (flags[event_offsets_[c] + k] != 0) components_[c]->at_event(k, now);
+    }
+  }
 }
 
 SparsityPattern System::jacobian_pattern() const {

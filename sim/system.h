@@ -71,6 +71,13 @@ class System {
   // just before it acts.
   void at_breakpoint(double time, double left_limit, const double* state);
 
+  // Events: all components' zero-crossing functions, concatenated.
+  int event_count() const { return event_count_; }
+  std::vector<int> event_directions() const;
+  void evaluate_events(double time, double signal_time, const double* state, double* values);
+  // Tells the owners of the crossed events (flags[k] != 0) where they are.
+  void at_events(double time, double signal_time, const double* state, const int* flags);
+
   // Structural non-zeros of df/dy (row = derivative, column = state).
   SparsityPattern jacobian_pattern() const;
 
@@ -85,6 +92,9 @@ class System {
 
   std::vector<std::unique_ptr<Component>> components_;
   std::vector<Component*> evaluation_order_;
+  std::vector<Component*> sampling_order_;
+  std::vector<int> event_offsets_;  // per component, in components_ order
+  int event_count_ = 0;
   std::vector<Connection> connections_;
   std::vector<StateInfo> states_;
   std::vector<ChannelInfo> channels_;

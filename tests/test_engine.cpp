@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "sim/sampled_component.h"
 #include "tests/support/test_support.h"
 
 using namespace tcpmsim;
@@ -221,4 +222,93 @@ TEST_CASE("Per-state absolute tolerances from the scenario reach the solver, in 
     CHECK_THAT(error.what(), Catch::Contains("solver.atol.muscle.temprature: unknown key "
                                              "'temprature' (did you mean 'temperature'?)"));
   }
+}
+
+namespace {
+
+// Publishes how many samples it has taken; the "controller" copy reads it at the same instant.
+class Counter final : public SampledComponent {
+ public:
+  Counter(std::string group, SamplingStage stage, double period)
+      : SampledComponent(std::move(group), "counter", period, stage) {}
+  std::vector<OutputDeclaration> outputs() const override {
+    return {{"count", "1"}, {"seen", "1"}};
+  }
+  std::vector<InputDeclaration> inputs() const override {
+    if (sampling_stage() == SamplingStage::controller) return {{"other", false, true}};
+    return {};
+  }
+  void compute_outputs(const Evaluation& e) const override {
+    set_output(e, 0, count_);
+    set_output(e, 1, seen_);
+  }
+  std::vector<double> times;
+
+ protected:
+  void sample(const Evaluation& e, long) override {
+    ++count_;
+    if (sampling_stage() == SamplingStage::controller) seen_ = input(e, 0);
+    times.push_back(e.time);
+  }
+
+ private:
+  double count_ = 0, seen_ = -1;
+};
+
+// Records where y = -y crosses a level.
+class Crossing final : public Component {
+ public:
+  explicit Crossing(double level) : Component("crossing", "crossing"), level_(level) {}
+  std::vector<StateDeclaration> states() const override { return {{"value", "1", 1e-12}}; }
+  std::vector<OutputDeclaration> outputs() const override { return {{"value", "1"}}; }
+  void initialize(const Evaluation&, std::span<double> own) const override { own[0] = 1.0; }
+  void compute_outputs(const Evaluation& e) const override { set_output(e, 0, state(e, 0)); }
+  void compute_derivatives(const Evaluation& e, double* d) const override {
+    set_derivative(d, 0, -state(e, 0));
+  }
+  int event_count() const override { return 1; }
+  int event_direction(int) const override { return -1; }
+  void event_functions(const Evaluation& e, double* g) const override {
+    g[0] = state(e, 0) - level_;
+  }
+  void at_event(int, const Evaluation& e) override { crossed_at.push_back(e.time); }
+  std::vector<double> crossed_at;
+
+ private:
+  double level_;
+};
+
+}  // namespace
+
+TEST_CASE("Sampled components act at the start and every period, estimators before controllers") {
+  System system;
+  system.add(std::make_unique<TestState>("plant", TestState::Law::decay, 1.0));
+  auto& controller = system.add(
+      std::make_unique<Counter>("controller", Component::SamplingStage::controller, 0.05));
+  auto& estimator =
+      system.add(std::make_unique<Counter>("estimator", Component::SamplingStage::estimator, 0.05));
+  system.connect(controller, "other", "estimator.count");
+  system.assemble();
+  Collector sink;
+  Integrator integrator(system, {});
+  const auto statistics = integrator.run(0.0, 1.0, 0.5, sink);
+  REQUIRE(estimator.times.size() == 20);  // 0, 0.05, ..., 0.95; the end is not a sample instant
+  CHECK(estimator.times[7] == 7 * 0.05);
+  CHECK(statistics.segments == 20);
+  // At every instant the controller saw the estimator's count of that same instant.
+  CHECK(system.signals()[static_cast<std::size_t>(system.signal_index("controller.seen"))] == 20);
+}
+
+TEST_CASE("A zero crossing is located to the solver's accuracy") {
+  System system;
+  auto& crossing = system.add(std::make_unique<Crossing>(0.5));
+  system.assemble();
+  Collector sink;
+  SolverSettings settings;
+  settings.relative_tolerance = 1e-10;
+  Integrator integrator(system, settings);
+  const auto statistics = integrator.run(0.0, 2.0, 0.1, sink);
+  REQUIRE(crossing.crossed_at.size() == 1);  // falling only, once
+  CHECK(crossing.crossed_at[0] == Approx(std::log(2.0)).epsilon(1e-8));
+  CHECK(statistics.events == 1);
 }

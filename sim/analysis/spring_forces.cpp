@@ -69,16 +69,32 @@ ForceDifferences differences(const ForceWindow& window, double nominal) {
   return result;
 }
 
-SpringForceRow run_one(const std::string& config, double window,
-                       std::shared_ptr<const UnitSystem> units) {
+// Loading reads units through udunits2, whose parser is not thread-safe: load on the caller's
+// thread, integrate on the pool.
+struct PreparedRun {
+  Scenario scenario;
+  double nominal_force = 0.0;
+  double load_seconds = 0.0;
+};
+
+PreparedRun prepare(const std::string& config, std::shared_ptr<const UnitSystem> units) {
   const auto started = std::chrono::steady_clock::now();
-  Scenario scenario = load_scenario(config, {}, std::move(units));
+  PreparedRun run{load_scenario(config, {}, std::move(units))};
+  const auto& chain = find_component<CoilSpringChain>(*run.scenario.system, config);
+  const auto& sensor = find_component<CoilSpringInductance>(*run.scenario.system, config);
+  run.nominal_force = chain.parameters().stiffness * (sensor.parameters().longest_length -
+                                                      chain.parameters().rest_length);  // (4.14)
+  run.load_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return run;
+}
+
+SpringForceRow integrate(PreparedRun& run, double window) {
+  const auto started = std::chrono::steady_clock::now();
+  Scenario& scenario = run.scenario;
   SpringForceRow row;
   row.scenario = scenario.settings.name;
-  const auto& chain = find_component<CoilSpringChain>(*scenario.system, config);
-  const auto& sensor = find_component<CoilSpringInductance>(*scenario.system, config);
-  row.nominal_force = chain.parameters().stiffness * (sensor.parameters().longest_length -
-                                                      chain.parameters().rest_length);  // (4.14)
+  row.nominal_force = run.nominal_force;
   ForceWindow sink(*scenario.system, scenario.settings.duration - window);
   Integrator integrator(*scenario.system, scenario.solver);
   row.statistics =
@@ -87,6 +103,7 @@ SpringForceRow run_one(const std::string& config, double window,
   row.simulated = differences(sink, row.nominal_force);
   row.thesis = thesis_table_4_2(row.scenario, row.thesis_rms_printed);
   row.wall_seconds =
+      run.load_seconds +
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return row;
 }
@@ -122,13 +139,15 @@ std::optional<ForceDifferences> thesis_table_4_2(const std::string& scenario,
 std::vector<SpringForceRow> run_spring_forces(const std::vector<std::string>& configs,
                                               double window, int threads,
                                               std::shared_ptr<const UnitSystem> units) {
+  std::vector<PreparedRun> runs;
+  for (const auto& config : configs) runs.push_back(prepare(config, units));
   std::vector<SpringForceRow> rows(configs.size());
   std::vector<std::string> errors(configs.size());
   std::atomic<std::size_t> next{0};
   auto work = [&] {
     for (std::size_t k = next++; k < configs.size(); k = next++) {
       try {
-        rows[k] = run_one(configs[k], window, units);
+        rows[k] = integrate(runs[k], window);
       } catch (const std::exception& error) {
         errors[k] = error.what();
       }

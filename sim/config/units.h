@@ -14,6 +14,8 @@ class UnitError : public std::runtime_error {
 
 // Unit conversion at the configuration boundary, backed by udunits2 and its unit database.
 // Knows SI prefixes, offset units (degC), and derived units ("N.s/mm", "uH/degC").
+// Not thread-safe: udunits2's parser keeps global state, so read scenarios on one thread
+// (integrating them in parallel afterwards is fine).
 class UnitSystem {
  public:
   UnitSystem();

@@ -81,6 +81,7 @@ void write_statistics(H5::H5Object& root, const SolverStatistics& statistics) {
   write_scalar(root, "solver_nonlinear_convergence_failures", type,
                std::int64_t{statistics.nonlinear_convergence_failures});
   write_scalar(root, "solver_segments", type, std::int64_t{statistics.segments});
+  write_scalar(root, "solver_events", type, std::int64_t{statistics.events});
   write_scalar(root, "samples", type, std::int64_t{statistics.output_samples});
 }
 
