@@ -33,7 +33,8 @@ std::unique_ptr<JouleDrive> JouleDrive::from_config(const std::string& group,
                                                     const ConfigNode& node,
                                                     const SignalContext& signals) {
   using Mode = JouleDriveParameters::Mode;
-  node.declare({"mode", "supply_voltage", "series_resistance", "power", "duty", "current"});
+  node.declare(
+      {"model", "mode", "supply_voltage", "series_resistance", "power", "duty", "current"});
   JouleDriveParameters p;
   const std::string mode = node.choice("mode", {"power", "duty", "current"});
   p.mode = mode == "duty" ? Mode::duty : mode == "current" ? Mode::current : Mode::power;

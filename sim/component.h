@@ -113,6 +113,12 @@ class Component {
   virtual void event_functions(const Evaluation& evaluation, double* values) const;
   virtual void at_event(int index, const Evaluation& evaluation);
 
+  // May change the tolerances of the component's own states for the coming steps (called at
+  // every segment start and after every event): a state that matters only at some times need
+  // not be resolved to the configured tolerance at others. Both spans hold the configured
+  // values on entry.
+  virtual void adapt_tolerances(std::span<double> absolute, std::span<double> relative) const;
+
   // Structural dependencies, for sparse and banded Jacobians. The defaults say "everything
   // the component owns or reads", which is exact for small components.
   virtual Dependencies derivative_dependencies(int state_index) const;

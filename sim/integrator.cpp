@@ -47,6 +47,9 @@ struct detail::CvodeHandles {
   std::vector<double> perturbed;
   std::vector<double> perturbed_derivatives;
   std::vector<int> event_flags;
+  std::vector<double> configured_tolerances;
+  std::vector<double> adapted_tolerances;
+  std::vector<double> relative_tolerances;  // per state; the configured rtol unless adapted
 
   ~CvodeHandles() {
     if (memory) CVodeFree(&memory);
@@ -123,6 +126,22 @@ int right_hand_side(realtype t, N_Vector y, N_Vector ydot, void* user_data) {
                        " s";
       return kRecoverable;
     }
+  }
+  return 0;
+}
+
+// CVODE's own vector-tolerance weights, 1 / (rtol |y_i| + atol_i), over tolerances that the
+// components may adapt between steps (CVodeSVtolerances cannot be called mid-run in 6.4).
+int error_weights(N_Vector y, N_Vector weights, void* user_data) {
+  auto& cv = cvode_of(user_data);
+  const double* state = N_VGetArrayPointer(y);
+  double* weight = N_VGetArrayPointer(weights);
+  const double* absolute = cv.adapted_tolerances.data();
+  const double* relative = cv.relative_tolerances.data();
+  for (std::size_t i = 0; i < cv.adapted_tolerances.size(); ++i) {
+    const double scale = (relative[i] * std::abs(state[i])) + absolute[i];
+    if (!(scale > 0.0)) return -1;
+    weight[i] = 1.0 / scale;
   }
   return 0;
 }
@@ -215,6 +234,9 @@ Integrator::Integrator(System& system, SolverSettings settings)
                         ? system_.states()[index].absolute_tolerance
                         : settings_.absolute_tolerances.at(index);
   }
+  cv.configured_tolerances.assign(tolerances, tolerances + size);
+  cv.adapted_tolerances = cv.configured_tolerances;
+  cv.relative_tolerances.assign(static_cast<std::size_t>(size), settings_.relative_tolerance);
   cv.memory =
       CVodeCreate(settings_.method == IntegrationMethod::adams ? CV_ADAMS : CV_BDF, cv.context);
   if (!cv.memory) throw std::runtime_error("CVodeCreate failed");
@@ -310,14 +332,24 @@ SolverFailure Integrator::failure(const std::string& headline) {
   return SolverFailure(message.str(), now, statistics_);
 }
 
+void Integrator::refresh_tolerances() {
+  auto& cv = *cvode_;
+  std::copy(cv.configured_tolerances.begin(), cv.configured_tolerances.end(),
+            cv.adapted_tolerances.begin());
+  std::fill(cv.relative_tolerances.begin(), cv.relative_tolerances.end(),
+            settings_.relative_tolerance);
+  system_.adapt_tolerances(cv.adapted_tolerances.data(), cv.relative_tolerances.data());
+  std::copy(cv.adapted_tolerances.begin(), cv.adapted_tolerances.end(),
+            N_VGetArrayPointer(cv.tolerances));
+}
+
 void Integrator::start_segment(double start, bool first) {
   auto& cv = *cvode_;
   if (first) {
     check(CVodeInit(cv.memory, right_hand_side, start, cv.state), "CVodeInit");
     check(CVodeSetUserData(cv.memory, cvode_.get()), "CVodeSetUserData");
     check(CVodeSetErrHandlerFn(cv.memory, capture_error, cvode_.get()), "CVodeSetErrHandlerFn");
-    check(CVodeSVtolerances(cv.memory, settings_.relative_tolerance, cv.tolerances),
-          "CVodeSVtolerances");
+    check(CVodeWFtolerances(cv.memory, error_weights), "CVodeWFtolerances");
     if (settings_.method == IntegrationMethod::adams) {
       cv.nonlinear_solver = SUNNonlinSol_FixedPoint(cv.state, 0, cv.context);
       check(CVodeSetNonlinearSolver(cv.memory, cv.nonlinear_solver), "CVodeSetNonlinearSolver");
@@ -339,6 +371,7 @@ void Integrator::start_segment(double start, bool first) {
   }
   if (settings_.initial_step > 0)
     check(CVodeSetInitStep(cv.memory, settings_.initial_step), "CVodeSetInitStep");
+  refresh_tolerances();
 }
 
 SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output, OutputSink& sink,
@@ -377,6 +410,7 @@ SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output, Ou
         ++statistics_.events;
         check(CVodeGetRootInfo(cv.memory, cv.event_flags.data()), "CVodeGetRootInfo");
         system_.at_events(reached, cv.signal_time(reached), state, cv.event_flags.data());
+        refresh_tolerances();
       }
       if (++steps_taken > settings_.max_steps) {
         throw failure("more than " + std::to_string(settings_.max_steps) +

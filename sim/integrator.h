@@ -98,6 +98,7 @@ class Integrator {
  private:
   void attach_linear_solver();
   void start_segment(double start, bool first);
+  void refresh_tolerances();
   void accumulate_statistics();
   SolverFailure failure(const std::string& headline);
 

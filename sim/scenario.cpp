@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "controllers/joule_drive.h"
+#include "controllers/muscle_drive.h"
 #include "controllers/signals/signal_config.h"
 #include "models/coil_impedance.h"
 #include "models/coil_spring_chain.h"
@@ -211,6 +212,28 @@ SolverSettings read_solver(const ConfigNode& root, const System& system) {
   return settings;
 }
 
+// `joule`: a prescribed duty, power or current, period-averaged. `muscle_drive`: the thesis'
+// Muscle Drive, averaged or switched, measuring L*.
+void build_drive(System& system, const ConfigNode& root, const MuscleSummary& muscle,
+                 const SignalContext& signals) {
+  const ConfigNode drive = root.at("drive");
+  if (drive.choice_or("model", {"joule", "muscle_drive"}, "joule") == "joule") {
+    auto& joule = system.add(JouleDrive::from_config(kDrive, drive, signals));
+    if (joule.needs_resistance()) system.connect(joule, "heater_resistance", "muscle.resistance");
+    return;
+  }
+  if (muscle.coil->inductance().is_measure) {
+    drive.fail(
+        "the Muscle Drive measures the coil's decay time itself: give muscle.inductance in henries "
+        "(quantity: inductance), not as a measure");
+  }
+  const bool controlled = root.has("controller");
+  auto& muscle_drive = system.add(MuscleDrive::from_config(kDrive, drive, signals, controlled));
+  system.connect(muscle_drive, "heater_resistance", "muscle.resistance");
+  system.connect(muscle_drive, "inductance", "muscle.inductance");
+  if (controlled) system.connect(muscle_drive, "power_command", "controller.power_command");
+}
+
 // The muscle with its drive and load (thesis ch. 6-7).
 void build_muscle_system(System& system, const ConfigNode& root, const SignalContext& signals) {
   const ConfigNode load = root.at("load");
@@ -218,8 +241,7 @@ void build_muscle_system(System& system, const ConfigNode& root, const SignalCon
   const auto drive_mode =
       load_type == "force" ? SlsMechanics::Drive::force : SlsMechanics::Drive::deflection;
   const MuscleSummary muscle = build_muscle(system, root.at("muscle"), drive_mode, signals);
-  auto& drive = system.add(JouleDrive::from_config(kDrive, root.at("drive"), signals));
-  if (drive.needs_resistance()) system.connect(drive, "heater_resistance", "muscle.resistance");
+  build_drive(system, root, muscle, signals);
   build_load(system, load, load_type, muscle, signals);
 }
 

@@ -194,6 +194,15 @@ void System::at_breakpoint(double time, double left_limit, const double* state) 
   evaluate_outputs(time, left_limit, state);
 }
 
+void System::adapt_tolerances(double* absolute, double* relative) const {
+  for (const auto& component : components_) {
+    const auto size = component->states().size();
+    if (size == 0) continue;
+    component->adapt_tolerances(std::span<double>(absolute + component->state_offset_, size),
+                                std::span<double>(relative + component->state_offset_, size));
+  }
+}
+
 std::vector<int> System::event_directions() const {
   std::vector<int> directions;
   for (const auto& component : components_) {

@@ -71,6 +71,9 @@ class System {
   // just before it acts.
   void at_breakpoint(double time, double left_limit, const double* state);
 
+  // Lets components adapt per-state tolerances; both arrays hold the configured ones on entry.
+  void adapt_tolerances(double* absolute, double* relative) const;
+
   // Events: all components' zero-crossing functions, concatenated.
   int event_count() const { return event_count_; }
   std::vector<int> event_directions() const;

@@ -1,5 +1,8 @@
 #include "controllers/signals/random_stream.h"
 
+#include <cmath>
+#include <numbers>
+
 namespace tcpmsim {
 
 namespace {
@@ -33,6 +36,12 @@ double RandomStream::uniform(double low, double high) {
 
 bool RandomStream::chance(double probability) {
   return uniform() < probability;
+}
+
+double RandomStream::normal() {
+  // 1 - u lies in (0, 1], so the logarithm is finite.
+  const double radius = std::sqrt(-2.0 * std::log(1.0 - uniform()));
+  return radius * std::cos(2.0 * std::numbers::pi * uniform());
 }
 
 }  // namespace tcpmsim

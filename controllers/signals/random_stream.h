@@ -16,6 +16,7 @@ class RandomStream {
   double uniform();  // [0, 1)
   double uniform(double low, double high);
   bool chance(double probability);
+  double normal();  // standard normal deviate (Box-Muller on this stream's uniforms)
 
  private:
   std::mt19937_64 engine_;

@@ -1,0 +1,104 @@
+#pragma once
+
+#include <memory>
+
+#include "controllers/signals/random_stream.h"
+#include "controllers/signals/signal_config.h"
+#include "sim/component.h"
+
+namespace tcpmsim {
+
+// The Muscle Drive of thesis section 7.2.1: it heats the muscle with a PWM voltage and measures
+// a proxy of the coil's inductance, L* (the "decay time"), from the current's decay in each
+// off-phase.
+//
+// Each period T = 1/f_pwm starts with the supply on for a fraction of the period, then off:
+//   on:   L(x,T) di/dt = U_b - (R_s + R_m) i
+//   off:  L(x,T) di/dt = -(R_m + R_p) i        (decay through the heater and measurement path)
+// and the heater dissipates R_m i^2. L* is the time from switch-off until i falls to the
+// threshold i_th, t_d = L/(R_m + R_p) ln(i_0/i_th), located as a zero crossing of the simulated
+// current, then quantised by the timer, with Gaussian timing noise and occasional spikes (the
+// hardware's artefacts, section 7.3.1).
+//
+// The power law. (7.2), P = D^2 R_m (U_b/R_b)^2, and the thesis' limits (D = 0.85 gives
+// 3.12 W) are quadratic in the duty parameter D, while a plain PWM dissipates in proportion to
+// its on-time. The `quadratic` law (the default) therefore switches on for a fraction D^2 of
+// each period, the only timing consistent with (7.2); `linear` switches on for D.
+//
+// Fidelity `averaged` replaces the current by its period average (P by the law above) and
+// computes t_d from L and R at each period's start; `switched` integrates the current (time
+// constant ~0.1 us against a 50 ms period), stopping at every switching edge.
+struct MuscleDriveParameters {
+  enum class Fidelity { averaged, switched };
+  enum class DutyLaw { quadratic, linear };
+  Fidelity fidelity = Fidelity::averaged;
+  DutyLaw duty_law = DutyLaw::quadratic;
+  double pwm_frequency = 20.0;       // [Hz]
+  double supply_voltage = 7.0;       // U_b [V]
+  double series_resistance = 0.57;   // R_s = R_b - R_m [ohm]
+  double path_resistance = 0.0;      // R_p, extra resistance of the off-phase path [ohm]
+  double threshold_current = 0.014;  // i_th [A]
+  double timer_resolution = 0.0;     // quantum of the decay time [s]; 0: none
+  double timing_noise = 0.0;         // standard deviation of the decay time [s]
+  double spike_probability = 0.0;    // per measurement
+  double spike_size = 0.0;           // added to the decay time, with random sign [s]
+  std::uint64_t seed = 0;
+};
+
+class MuscleDrive final : public Component {
+ public:
+  enum Input { kHeaterResistance, kInductance, kCommand };
+  enum Output { kPower, kDuty, kCurrent, kMeasure, kOn };
+
+  // With `power_demand` the drive follows that signal [W]; without, it takes a "power_command"
+  // input from a controller.
+  MuscleDrive(std::string group, MuscleDriveParameters parameters,
+              std::unique_ptr<Signal> power_demand);
+  static std::unique_ptr<MuscleDrive> from_config(const std::string& group, const ConfigNode& node,
+                                                  const SignalContext& signals, bool controlled);
+
+  std::vector<StateDeclaration> states() const override;
+  std::vector<OutputDeclaration> outputs() const override;
+  std::vector<InputDeclaration> inputs() const override;
+  void initialize(const Evaluation& evaluation, std::span<double> own_state) const override;
+  void compute_outputs(const Evaluation& evaluation) const override;
+  void compute_derivatives(const Evaluation& evaluation, double* derivatives) const override;
+  double next_breakpoint_after(double t) const override;
+  void at_breakpoint(const Evaluation& evaluation) override;
+  SamplingStage sampling_stage() const override { return SamplingStage::actuator; }
+  int event_count() const override;
+  int event_direction(int) const override { return -1; }
+  void event_functions(const Evaluation& evaluation, double* values) const override;
+  void at_event(int index, const Evaluation& evaluation) override;
+  void adapt_tolerances(std::span<double> absolute, std::span<double> relative) const override;
+  std::vector<SignalRecord> signal_records() const override;
+
+  const MuscleDriveParameters& parameters() const { return parameters_; }
+  // Full-on power and the duty for a power, by the configured law.
+  double full_power(double heater_resistance) const;
+  double duty_for_power(double power, double heater_resistance) const;
+  double on_fraction(double duty) const;
+  // The decay time the measurement would see for inductance L and heater resistance R_m [s].
+  double decay_time(double inductance, double heater_resistance) const;
+  long measurements() const { return measurements_; }
+
+ private:
+  double period() const { return 1.0 / parameters_.pwm_frequency; }
+  double on_current(double heater_resistance) const;
+  double last_on_current_ = 0.0;
+  double measured(double decay_time);  // quantisation, noise, spikes
+
+  MuscleDriveParameters parameters_;
+  std::unique_ptr<Signal> power_demand_;
+  RandomStream random_;
+  // Held from the latest period start / switching edge.
+  double duty_ = 0.0;
+  double on_until_ = 0.0;  // end of this period's on-phase [s]
+  bool on_ = false;
+  double switched_off_at_ = -1.0;
+  bool awaiting_decay_ = false;
+  double measure_ = 0.0;  // L* [s]
+  long measurements_ = 0;
+};
+
+}  // namespace tcpmsim
