@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "sim/analysis/coil_fit_command.h"
 #include "sim/cli/progress.h"
 #include "sim/config/config_error.h"
 #include "sim/run.h"
@@ -28,6 +29,7 @@ struct Options {
   std::string output;
   std::vector<std::string> overrides;
   bool quiet = false;
+  tcpmsim::analysis::CoilFitOptions coil_fit;
 };
 
 tcpmsim::Scenario load(const Options& options) {
@@ -76,6 +78,13 @@ int run(const Options& options) {
               << " convergence failures, " << stats.segments << " segments; "
               << outcome.wall_seconds << " s wall\n";
   }
+  return kSuccess;
+}
+
+// Thesis ch. 2-3 on the measured coil-spring data (sim/analysis/coil_fit_command.h).
+int coil_fit(const Options& options) {
+  tcpmsim::analysis::run_coil_fit(options.coil_fit, std::cout,
+                                  std::make_shared<tcpmsim::UnitSystem>());
   return kSuccess;
 }
 
@@ -128,6 +137,21 @@ int main(int argc, char** argv) {
       app.add_subcommand("validate", "Check a scenario file and list its states and outputs");
   add_common(*validate_command, options);
 
+  CLI::App* coil_fit_command = app.add_subcommand(
+      "coil-fit", "Thesis Tables 2.2/2.3 and the ch. 3 comparison from measured coil-spring data");
+  coil_fit_command->add_option("springs", options.coil_fit.spring_files, "Spring files (YAML)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  options.coil_fit.data_directory = "data/coil-spring-inductance";
+  coil_fit_command
+      ->add_option("--data", options.coil_fit.data_directory,
+                   "Directory of the sequence files <name>.csv (default: the thesis' data, "
+                   "data/coil-spring-inductance)")
+      ->check(CLI::ExistingDirectory);
+  coil_fit_command->add_option("-o,--output", options.coil_fit.output,
+                               "Output file (default: results/coil_fit.h5)");
+  coil_fit_command->add_flag("-q,--quiet", options.coil_fit.quiet, "No tables");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -135,5 +159,6 @@ int main(int argc, char** argv) {
     return code == 0 ? kSuccess : kUsageError;
   }
   if (run_command->parsed()) return guarded(run, options);
+  if (coil_fit_command->parsed()) return guarded(coil_fit, options);
   return guarded(validate, options);
 }
