@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
     const auto started = std::chrono::steady_clock::now();
     statistics =
         integrator.run(0.0, scenario.settings.duration,
-                                {scenario.settings.output_interval, scenario.settings.output_start}, sink);
+                       {scenario.settings.output_interval, scenario.settings.output_start}, sink);
     seconds.push_back(
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
   }

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "sim/analysis/coil_fit_command.h"
+#include "sim/analysis/spring_forces_command.h"
 #include "sim/cli/progress.h"
 #include "sim/config/config_error.h"
 #include "sim/run.h"
@@ -30,6 +31,7 @@ struct Options {
   std::vector<std::string> overrides;
   bool quiet = false;
   tcpmsim::analysis::CoilFitOptions coil_fit;
+  tcpmsim::SpringForcesOptions spring_forces;
 };
 
 tcpmsim::Scenario load(const Options& options) {
@@ -85,6 +87,13 @@ int run(const Options& options) {
 int coil_fit(const Options& options) {
   tcpmsim::analysis::run_coil_fit(options.coil_fit, std::cout,
                                   std::make_shared<tcpmsim::UnitSystem>());
+  return kSuccess;
+}
+
+// Thesis ch. 4: Table 4.2 and the modal checks (sim/analysis/spring_forces_command.h).
+int spring_forces(const Options& options) {
+  tcpmsim::run_spring_forces_command(options.spring_forces, std::cout,
+                                     std::make_shared<tcpmsim::UnitSystem>());
   return kSuccess;
 }
 
@@ -152,6 +161,23 @@ int main(int argc, char** argv) {
                                "Output file (default: results/coil_fit.h5)");
   coil_fit_command->add_flag("-q,--quiet", options.coil_fit.quiet, "No tables");
 
+  CLI::App* spring_forces_command = app.add_subcommand(
+      "spring-forces",
+      "Thesis Table 4.2: force sensing on an oscillating coil spring, and modal checks");
+  spring_forces_command
+      ->add_option("configs", options.spring_forces.configs, "Chapter-4 scenarios (YAML)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  spring_forces_command->add_option("-o,--output", options.spring_forces.output,
+                                    "Output file (default: results/spring_forces.h5)");
+  spring_forces_command
+      ->add_option("--window", options.spring_forces.window, "Analysed tail of each run [s]")
+      ->check(CLI::PositiveNumber);
+  spring_forces_command
+      ->add_option("--threads", options.spring_forces.threads, "Simulations in parallel")
+      ->check(CLI::Range(1, 64));
+  spring_forces_command->add_flag("-q,--quiet", options.spring_forces.quiet, "No tables");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -160,5 +186,6 @@ int main(int argc, char** argv) {
   }
   if (run_command->parsed()) return guarded(run, options);
   if (coil_fit_command->parsed()) return guarded(coil_fit, options);
+  if (spring_forces_command->parsed()) return guarded(spring_forces, options);
   return guarded(validate, options);
 }
