@@ -1,0 +1,189 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "controllers/discrete_filters.h"
+#include "models/impedance_laws.h"
+#include "models/sls_mechanics.h"
+#include "sim/config/config_node.h"
+#include "sim/sampled_component.h"
+
+namespace tcpmsim {
+
+// (7.1) discretised exactly for a power held constant over each sample interval (the Muscle
+// Drive holds its duty cycle for a whole PWM period). Integrating dF_T/dt = kappa_P P - kappa_c F_T
+// over one period T with P constant:
+//     F_T[k] = phi F_T[k-1] + gamma P[k-1],   phi = exp(-kappa_c T),
+//     gamma = (kappa_P / kappa_c) (1 - phi),
+// where P[k-1] is the power applied over [t_{k-1}, t_k). The estimator reads the controller's
+// held command at t_k, which is exactly that power.
+class DiscreteThermalForce {
+ public:
+  DiscreteThermalForce(double heating_gain, double cooling_rate, double period);
+  void reset(double thermal_force) { value_ = thermal_force; }
+  double advance(double power) { return value_ = decay_ * value_ + gain_ * power; }
+  double value() const { return value_; }
+  double decay() const { return decay_; }  // phi
+  double gain() const { return gain_; }    // gamma [N/W]
+
+ private:
+  double decay_;
+  double gain_;
+  double value_ = 0.0;
+};
+
+// The SLS (7.6), dF_l/dt = -(k2/c) F_l + (k1 k2/c) x + (k1 + k2) dx/dt, driven by the sampled
+// deflection estimate x[k] and its backward difference v[k] = (x[k] - x[k-1]) / T, discretised
+// exactly for the velocity held over each sample interval (t_{k-1}, t_k].
+//
+// Derivation. x and dx/dt cannot both be held constant over an interval unless v = 0. Holding
+// the velocity makes the deflection its integral, the straight line from x[k-1] to x[k]. With
+// w = F_l - (k1 + k2) x, (7.6) loses its derivative term: dw/dt = -beta w - beta k2 x, with
+// beta = k2/c. Integrating over the interval with x(t_{k-1} + s) = x[k-1] + v s:
+//     w[k] = phi w[k-1] - k2 (1 - phi) x[k-1] - k2 v (T - (1 - phi) / beta),   phi = exp(-beta T),
+// and back in F_l, with x[k-1] = x[k] - v T:
+//     F_l[k] = phi F_l[k-1] + (1 - phi) k1 x[k] + (phi k1 T + (1 - phi) c) v[k].
+// This is exact for any deflection that is piecewise linear between sample instants (a ramp
+// gives F_l = k1 x + c v exactly), and the backward difference is the thesis' velocity
+// estimate. The alternative of holding x[k] and v[k] as two independent inputs (a plain
+// zero-order-hold c2d of (7.6) with input [x, dx/dt]) mixes a constant deflection with a
+// non-zero velocity; it lags a steady ramp by k1 v T / 2 (0.27 mN at 1 mm/s, 20 Hz) and misses
+// the plant at the sample instants by that much.
+// reset() starts the branch at rest (dashpot relaxed): F_l = k1 x, as the plant's SlsMechanics.
+class DiscreteSls {
+ public:
+  DiscreteSls(const SlsParameters& parameters, double period);
+  void reset(double deflection) { value_ = k1_ * deflection; }
+  double advance(double deflection, double velocity) {
+    return value_ = decay_ * value_ + deflection_gain_ * deflection + velocity_gain_ * velocity;
+  }
+  double value() const { return value_; }
+  double decay() const { return decay_; }                      // phi
+  double deflection_gain() const { return deflection_gain_; }  // (1 - phi) k1 [N/m]
+  double velocity_gain() const { return velocity_gain_; }      // phi k1 T + (1 - phi) c [N s/m]
+
+ private:
+  double k1_;
+  double decay_;
+  double deflection_gain_;
+  double velocity_gain_;
+  double value_ = 0.0;
+};
+
+// The estimator's own model of the muscle (plant and model stay separate objects).
+struct SelfSensingEstimatorParameters {
+  // (7.3)/(7.4) in the Muscle Drive's decay time L* [s]: lambda_l [s m], lambda_x [m],
+  // lambda_0 [s]; lambda_T = 0 (constantan, section 7.2.2).
+  InductanceLaw inductance;
+  int moving_average_length = 2;       // samples of L* (7.3.1)
+  int median_length = 15;              // samples of the moving average (7.3.1)
+  double low_pass_cutoff = 0.111;      // [Hz] on the deflection (7.2.3); +infinity: none
+  double heating_gain = 0.0;           // kappa_P [N/J] (7.1)
+  double cooling_rate = 0.0;           // kappa_c [1/s]
+  double initial_thermal_force = 0.0;  // F_T at the first sample [N]
+  SlsParameters mechanics;             // k1, k2, c and phi_0 (7.5), (7.6)
+  double deflection_offset = 0.0;      // calibration (7.3.4), added to the deflection [m]
+  double force_offset = 0.0;           // calibration (7.3.4), added to the force [N]
+};
+
+// The held estimates after one sample. Before the first usable L* the deflection, velocity and
+// force are NaN (unknown); the thermal force is always known, from the commanded power.
+struct SelfSensingEstimate {
+  double deflection;      // x^ [m], low-passed and calibrated
+  double velocity;        // dx^/dt [m/s], backward difference of the low-passed deflection
+  double force;           // F^ = F_l + F_T + phi_0 + force offset (7.5) [N]
+  double thermal_force;   // F_T^ [N]
+  double raw_deflection;  // (7.4) of the median-filtered L*, calibrated, before the low-pass [m]
+};
+
+// Self-sensing of deflection and force (thesis 7.2.2-7.2.3, Fig. 7.2), sampled with the
+// Muscle Drive's PWM period.
+//
+// Each sample:
+//   L* -> 2-sample moving average -> 15-sample median  (spikes, 7.3.1)
+//      -> (7.4) x = (lambda_l - lambda_x (L* - lambda_0)) / (L* - lambda_0)    raw deflection
+//      -> first-order low-pass, 0.111 Hz (7.2.3)                               deflection
+//      -> backward difference                                                   velocity
+//   F^ = F_l(x^, v^) (7.6) + F_T(P) (7.1) + phi_0 (7.5), each discretised exactly (above).
+//
+// Inputs, read at the sample instant: "inductance_measure", the Muscle Drive's latest L*
+// (measured during the PWM period that just ended), and "power_command", the power the
+// controller commanded at the previous sample and held since.
+//
+// Start-up and bad samples. The first sample (and any sample whose index does not follow the
+// previous one, i.e. a new run) starts the estimator: F_T = initial_thermal_force; the window
+// filters grow until full (see discrete_filters.h). An L* that is not finite or not positive
+// is no measurement (the Muscle Drive reports 0 before its first off-phase): it is not fed to
+// the moving average and median. A median output at or below lambda_0 lies outside (7.4)'s
+// domain (the deflection would be infinite or below -lambda_x). In both cases the raw
+// deflection holds its last value and the low-pass, velocity and SLS run on with it; before
+// the first usable value they stay NaN, and the SLS starts relaxed at the first one.
+// Both cases are counted.
+//
+// Calibration (7.3.4). The offsets are added to the deflection (raw and filtered, hence also
+// to the force model's input) and to the force. The velocity is the difference of the
+// uncalibrated deflection, so changing an offset never produces a velocity impulse; after a
+// change of the deflection offset, F_l moves to the new deflection with the SLS's relaxation
+// time c/k2. To calibrate, average true - estimate over the calibration window and add it to the
+// current offset (calibration_offset in sim/analysis/control_tasks.h).
+class SelfSensingEstimator final : public SampledComponent {
+ public:
+  enum Input { kInductanceMeasure, kPowerCommand };
+  enum Output { kDeflection, kVelocity, kForce, kThermalForce, kRawDeflection };
+
+  SelfSensingEstimator(std::string group, SelfSensingEstimatorParameters parameters, double period);
+  // Keys: inductance {lambda_l, lambda_x, lambda_0}, filters {moving_average, median,
+  // low_pass_cutoff} (optional, thesis defaults 2, 15, 0.111 Hz), thermal {kappa_P, kappa_c,
+  // initial_thermal_force (optional, 0 N)}, mechanics {k1, k2, damping, force_offset},
+  // calibration {deflection_offset, force_offset} (optional, 0).
+  static std::unique_ptr<SelfSensingEstimator> from_config(const std::string& group,
+                                                           const ConfigNode& node, double period);
+
+  std::vector<OutputDeclaration> outputs() const override;
+  std::vector<InputDeclaration> inputs() const override;
+  void compute_outputs(const Evaluation& evaluation) const override;
+
+  // One sample, outside the engine: what sample() does with its two inputs.
+  const SelfSensingEstimate& process(double inductance_measure, double power_command);
+  // Forgets everything but the parameters and offsets; the next sample is a first one.
+  void restart();
+
+  const SelfSensingEstimate& estimate() const { return estimate_; }
+  const SelfSensingEstimatorParameters& parameters() const { return parameters_; }
+  void set_deflection_offset(double offset);
+  void set_force_offset(double offset);
+  double deflection_offset() const { return parameters_.deflection_offset; }
+  double force_offset() const { return parameters_.force_offset; }
+  // (7.4) of the estimator's own law, without filters or calibration.
+  double model_deflection(double inductance_measure) const;
+
+  long rejected_measurements() const { return rejected_measurements_; }  // not finite or <= 0
+  long out_of_domain_samples() const { return out_of_domain_samples_; }  // median <= lambda_0
+
+ protected:
+  void sample(const Evaluation& evaluation, long index) override;
+
+ private:
+  void publish();
+
+  SelfSensingEstimatorParameters parameters_;
+  MovingAverage moving_average_;
+  RunningMedian median_;
+  FirstOrderLowPass low_pass_;
+  DiscreteThermalForce thermal_;
+  DiscreteSls sls_;
+
+  bool started_ = false;         // a first sample has been taken
+  bool has_deflection_ = false;  // a usable L* has arrived since the start
+  long last_index_ = 0;
+  double model_raw_deflection_ = 0.0;  // (7.4), uncalibrated, held over bad samples
+  double model_deflection_ = 0.0;      // low-passed, uncalibrated
+  double velocity_ = 0.0;
+  long rejected_measurements_ = 0;
+  long out_of_domain_samples_ = 0;
+  SelfSensingEstimate estimate_;
+};
+
+}  // namespace tcpmsim
