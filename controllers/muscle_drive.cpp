@@ -67,8 +67,8 @@ std::vector<StateDeclaration> MuscleDrive::states() const {
 }
 
 std::vector<OutputDeclaration> MuscleDrive::outputs() const {
-  return {
-      {"power", "W"}, {"duty", "1"}, {"current", "A"}, {"inductance_measure", "s"}, {"on", "1"}};
+  return {{"power", "W"}, {"duty", "1"},        {"current", "A"}, {"inductance_measure", "s"},
+          {"on", "1"},    {"power_demand", "W"}};
 }
 
 std::vector<InputDeclaration> MuscleDrive::inputs() const {
@@ -127,12 +127,8 @@ void MuscleDrive::at_breakpoint(const Evaluation& evaluation) {
   const double k = std::round(t / period());
   if (at_instant(t, k * period())) {
     const double resistance = input(evaluation, kHeaterResistance);
-    if (parameters_.fidelity == MuscleDriveParameters::Fidelity::averaged &&
-        on_fraction(duty_) < 1.0 && k > 0) {
-      measure_ = measured(decay_time(input(evaluation, kInductance), resistance));
-    }
-    const double demand = power_demand_ ? power_demand_->value(t) : input(evaluation, kCommand);
-    duty_ = duty_for_power(demand, resistance);
+    demand_ = power_demand_ ? power_demand_->value(t) : input(evaluation, kCommand);
+    duty_ = duty_for_power(demand_, resistance);
     last_on_current_ = on_current(resistance);
     on_until_ = t + on_fraction(duty_) * period();
     on_ = on_until_ > t;
@@ -141,6 +137,18 @@ void MuscleDrive::at_breakpoint(const Evaluation& evaluation) {
     switched_off_at_ = t;
     awaiting_decay_ = true;
   }
+}
+
+void MuscleDrive::sense(const Evaluation& evaluation) {
+  // The averaged drive has no simulated decay: at each period start it reports the decay time
+  // of the off-phase just ended from L and R now, before the estimator samples, as the
+  // switched drive's located crossing is available by then.
+  if (parameters_.fidelity != MuscleDriveParameters::Fidelity::averaged) return;
+  const double t = evaluation.time;
+  const double k = std::round(t / period());
+  if (k < 1.0 || !at_instant(t, k * period()) || on_fraction(duty_) >= 1.0) return;
+  measure_ =
+      measured(decay_time(input(evaluation, kInductance), input(evaluation, kHeaterResistance)));
 }
 
 double MuscleDrive::next_breakpoint_after(double t) const {
@@ -166,6 +174,7 @@ void MuscleDrive::compute_outputs(const Evaluation& evaluation) const {
   set_output(evaluation, kDuty, duty_);
   set_output(evaluation, kMeasure, measure_);
   set_output(evaluation, kOn, on_ ? 1.0 : 0.0);
+  set_output(evaluation, kDemand, demand_);
 }
 
 void MuscleDrive::compute_derivatives(const Evaluation& evaluation, double* derivatives) const {

@@ -48,7 +48,7 @@ struct MuscleDriveParameters {
 class MuscleDrive final : public Component {
  public:
   enum Input { kHeaterResistance, kInductance, kCommand };
-  enum Output { kPower, kDuty, kCurrent, kMeasure, kOn };
+  enum Output { kPower, kDuty, kCurrent, kMeasure, kOn, kDemand };
 
   // With `power_demand` the drive follows that signal [W]; without, it takes a "power_command"
   // input from a controller.
@@ -65,6 +65,7 @@ class MuscleDrive final : public Component {
   void compute_derivatives(const Evaluation& evaluation, double* derivatives) const override;
   double next_breakpoint_after(double t) const override;
   void at_breakpoint(const Evaluation& evaluation) override;
+  void sense(const Evaluation& evaluation) override;
   SamplingStage sampling_stage() const override { return SamplingStage::actuator; }
   int event_count() const override;
   int event_direction(int) const override { return -1; }
@@ -93,6 +94,7 @@ class MuscleDrive final : public Component {
   RandomStream random_;
   // Held from the latest period start / switching edge.
   double duty_ = 0.0;
+  double demand_ = 0.0;    // the power asked for this period [W]
   double on_until_ = 0.0;  // end of this period's on-phase [s]
   bool on_ = false;
   double switched_off_at_ = -1.0;

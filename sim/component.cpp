@@ -23,6 +23,8 @@ double Component::next_breakpoint_after(double) const {
 
 void Component::at_breakpoint(const Evaluation&) {}
 
+void Component::sense(const Evaluation&) {}
+
 void Component::adapt_tolerances(std::span<double>, std::span<double>) const {}
 
 void Component::event_functions(const Evaluation&, double*) const {}

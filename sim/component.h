@@ -99,6 +99,11 @@ class Component {
   // the left-limit inputs. Sampled systems update their held values here.
   virtual void at_breakpoint(const Evaluation& evaluation);
 
+  // Called at every breakpoint before any component acts, with outputs computed from the
+  // left-limit inputs: a component that is also an instrument publishes its reading here,
+  // ahead of the estimators, even if it acts as an actuator later in the instant.
+  virtual void sense(const Evaluation& evaluation);
+
   // Within one instant, components act in this order: instruments (0) publish a measurement,
   // estimators (1) use it, controllers (2) use the estimates, actuators (3) apply commands.
   enum class SamplingStage { instrument = 0, estimator = 1, controller = 2, actuator = 3 };

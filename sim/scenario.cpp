@@ -4,6 +4,8 @@
 
 #include "controllers/joule_drive.h"
 #include "controllers/muscle_drive.h"
+#include "controllers/pid_controller.h"
+#include "controllers/self_sensing_estimator.h"
 #include "controllers/signals/signal_config.h"
 #include "models/coil_impedance.h"
 #include "models/coil_spring_chain.h"
@@ -25,7 +27,8 @@ constexpr const char* kLoad = "load";
 
 ScenarioSettings read_settings(const ConfigNode& root) {
   ScenarioSettings settings;
-  root.declare({"scenario", "output", "solver", "muscle", "drive", "load", "spring"});
+  root.declare({"scenario", "output", "solver", "muscle", "drive", "load", "spring", "estimator",
+                "controller"});
   const ConfigNode scenario = root.at("scenario");
   scenario.declare({"name", "description", "duration", "seed"});
   settings.name = scenario.text("name");
@@ -212,12 +215,40 @@ SolverSettings read_solver(const ConfigNode& root, const System& system) {
   return settings;
 }
 
+// The self-sensing estimator and the controller (thesis 7.2.3-7.2.4), sampled with the Muscle
+// Drive's PWM: the estimator reads the drive's L* and the power it was asked for, the controller
+// the estimate of what it controls.
+void build_self_sensing(System& system, const ConfigNode& root, const MuscleDrive& drive,
+                        const SignalContext& signals) {
+  const double period = 1.0 / drive.parameters().pwm_frequency;
+  const bool controlled = root.has("controller");
+  if (!root.has("estimator")) {
+    if (controlled) root.at("controller").fail("a controller needs an estimator section to read");
+    return;
+  }
+  auto& estimator =
+      system.add(SelfSensingEstimator::from_config("estimator", root.at("estimator"), period));
+  system.connect(estimator, "inductance_measure", "drive.inductance_measure");
+  system.connect(estimator, "power_command",
+                 controlled ? "controller.power_command" : "drive.power_demand");
+  if (!controlled) return;
+  auto& controller =
+      system.add(PidController::from_config("controller", root.at("controller"), period, signals));
+  system.connect(controller, "estimate",
+                 controller.target() == PidController::Target::deflection ? "estimator.deflection"
+                                                                          : "estimator.force");
+}
+
 // `joule`: a prescribed duty, power or current, period-averaged. `muscle_drive`: the thesis'
 // Muscle Drive, averaged or switched, measuring L*.
 void build_drive(System& system, const ConfigNode& root, const MuscleSummary& muscle,
                  const SignalContext& signals) {
   const ConfigNode drive = root.at("drive");
   if (drive.choice_or("model", {"joule", "muscle_drive"}, "joule") == "joule") {
+    for (const char* section : {"estimator", "controller"}) {
+      if (root.has(section))
+        root.at(section).fail("self-sensing needs the Muscle Drive (drive.model: muscle_drive)");
+    }
     auto& joule = system.add(JouleDrive::from_config(kDrive, drive, signals));
     if (joule.needs_resistance()) system.connect(joule, "heater_resistance", "muscle.resistance");
     return;
@@ -232,6 +263,7 @@ void build_drive(System& system, const ConfigNode& root, const MuscleSummary& mu
   system.connect(muscle_drive, "heater_resistance", "muscle.resistance");
   system.connect(muscle_drive, "inductance", "muscle.inductance");
   if (controlled) system.connect(muscle_drive, "power_command", "controller.power_command");
+  build_self_sensing(system, root, muscle_drive, signals);
 }
 
 // The muscle with its drive and load (thesis ch. 6-7).

@@ -99,10 +99,12 @@ void System::assemble() {
                      return a->sampling_stage() < b->sampling_stage();
                    });
   event_offsets_.clear();
+  state_counts_.clear();
   event_count_ = 0;
   for (const auto& component : components_) {
     event_offsets_.push_back(event_count_);
     event_count_ += component->event_count();
+    state_counts_.push_back(static_cast<int>(component->states().size()));
   }
   assembled_ = true;
 }
@@ -184,8 +186,14 @@ double System::next_breakpoint_after(double time) const {
 void System::at_breakpoint(double time, double left_limit, const double* state) {
   evaluate_outputs(time, left_limit, state);
   const Evaluation now = evaluation(time, left_limit, state);
-  // Each component republishes its outputs right after acting, so a controller sampling after
-  // an estimator at the same instant sees the new estimate.
+  // Instruments first (a drive that measures as well as heats publishes its reading), then each
+  // component republishes its outputs right after acting, so a controller sampling after an
+  // estimator at the same instant sees the new estimate.
+  for (Component* component : sampling_order_) {
+    component->sense(now);
+    component->compute_outputs(now);
+    component->compute_observations(now);
+  }
   for (Component* component : sampling_order_) {
     component->at_breakpoint(now);
     component->compute_outputs(now);
@@ -195,8 +203,9 @@ void System::at_breakpoint(double time, double left_limit, const double* state) 
 }
 
 void System::adapt_tolerances(double* absolute, double* relative) const {
-  for (const auto& component : components_) {
-    const auto size = component->states().size();
+  for (std::size_t c = 0; c < components_.size(); ++c) {
+    const auto& component = components_[c];
+    const auto size = static_cast<std::size_t>(state_counts_[c]);
     if (size == 0) continue;
     component->adapt_tolerances(std::span<double>(absolute + component->state_offset_, size),
                                 std::span<double>(relative + component->state_offset_, size));
@@ -229,6 +238,44 @@ void System::at_events(double time, double signal_time, const double* state, con
       if (flags[event_offsets_[c] + k] != 0) components_[c]->at_event(k, now);
     }
   }
+}
+
+std::string System::check_component_contracts(double time, const double* state) {
+  const double sentinel = -123456.789;
+  std::vector<double> derivatives(static_cast<std::size_t>(state_size_));
+  const Evaluation now = evaluation(time, time, state);
+  for (std::size_t c = 0; c < components_.size(); ++c) {
+    Component& component = *components_[c];
+    const std::string name = component.group() + "/" + component.kind();
+    const auto outputs = component.outputs().size();
+    const auto begin = static_cast<std::size_t>(component.output_offset_);
+    evaluate_outputs(time, time, state);  // inputs as they would be
+    const std::vector<double> before = signals_;
+    for (std::size_t i = begin; i < begin + outputs; ++i) signals_[i] = sentinel;
+    component.compute_outputs(now);
+    component.compute_observations(now);
+    for (std::size_t i = 0; i < signals_.size(); ++i) {
+      const bool own = i >= begin && i < begin + outputs;
+      if (!own && signals_[i] != before[i] && !(std::isnan(signals_[i]) && std::isnan(before[i]))) {
+        return name + " wrote signal " + std::to_string(i) + ", outside its outputs";
+      }
+      if (own && signals_[i] == sentinel)
+        return name + " did not write its output " + std::to_string(i - begin);
+    }
+    std::fill(derivatives.begin(), derivatives.end(), sentinel);
+    component.compute_derivatives(now, derivatives.data());
+    const auto first = static_cast<std::size_t>(component.state_offset_);
+    const auto count = static_cast<std::size_t>(state_counts_[c]);
+    for (std::size_t i = 0; i < derivatives.size(); ++i) {
+      const bool own = i >= first && i < first + count;
+      if (!own && derivatives[i] != sentinel)
+        return name + " wrote derivative " + std::to_string(i) + ", not its own";
+      if (own && derivatives[i] == sentinel)
+        return name + " did not write its derivative " + std::to_string(i - first);
+    }
+  }
+  evaluate_outputs(time, time, state);
+  return {};
 }
 
 SparsityPattern System::jacobian_pattern() const {

@@ -81,6 +81,11 @@ class System {
   // Tells the owners of the crossed events (flags[k] != 0) where they are.
   void at_events(double time, double signal_time, const double* state, const int* flags);
 
+  // Self-check for tests: every component, evaluated at (time, state), writes exactly its own
+  // outputs and derivatives and nothing else. Returns a description of the first violation,
+  // or an empty string.
+  std::string check_component_contracts(double time, const double* state);
+
   // Structural non-zeros of df/dy (row = derivative, column = state).
   SparsityPattern jacobian_pattern() const;
 
@@ -97,6 +102,7 @@ class System {
   std::vector<Component*> evaluation_order_;
   std::vector<Component*> sampling_order_;
   std::vector<int> event_offsets_;  // per component, in components_ order
+  std::vector<int> state_counts_;   // per component, in components_ order
   int event_count_ = 0;
   std::vector<Connection> connections_;
   std::vector<StateInfo> states_;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "controllers/signals/constant_signal.h"
+#include "controllers/signals/control_task_signals.h"
 #include "controllers/signals/log_sweep_signal.h"
 #include "controllers/signals/multisine_signal.h"
 #include "controllers/signals/periodic_signal.h"
@@ -185,6 +186,36 @@ std::unique_ptr<Signal> read_periodic(const ConfigNode& node, std::string_view u
   return std::make_unique<PeriodicSignal>(period, read_signal(node.at("signal"), unit, inner));
 }
 
+// The thesis' control-task references (7.3.4): a stepped sine sweep (15 log-spaced frequencies
+// in [10^-2.4, 10^-1.1] Hz, 3 periods each) and a step sequence (7 levels held 20 s).
+std::unique_ptr<Signal> read_stepped_sine_sweep(const ConfigNode& node, std::string_view unit) {
+  node.declare({"type", "offset", "amplitude", "band", "frequencies", "periods", "start_time"});
+  SineSweepSettings settings;
+  settings.offset = node.quantity("offset", unit);
+  settings.amplitude = node.quantity("amplitude", unit);
+  if (node.has("band")) {
+    std::tie(settings.lowest_frequency, settings.highest_frequency) =
+        node.interval("band", "Hz", ValueCheck::positive());
+  }
+  settings.frequencies = static_cast<int>(
+      node.integer_or("frequencies", settings.frequencies, ValueCheck::at_least(1)));
+  settings.periods = node.number_or("periods", settings.periods, ValueCheck::positive());
+  settings.start_time = node.quantity_or("start_time", "s", 0.0, ValueCheck::non_negative());
+  return make_stepped_sine_sweep(settings);
+}
+
+std::unique_ptr<Signal> read_step_sequence(const ConfigNode& node, std::string_view unit) {
+  node.declare({"type", "range", "steps", "hold", "start_time", "initial"});
+  StepSequenceSettings settings;
+  std::tie(settings.low, settings.high) = node.interval("range", unit);
+  settings.steps =
+      static_cast<int>(node.integer_or("steps", settings.steps, ValueCheck::at_least(1)));
+  settings.hold = node.quantity_or("hold", "s", settings.hold, ValueCheck::positive());
+  settings.start_time = node.quantity_or("start_time", "s", 0.0, ValueCheck::non_negative());
+  if (auto initial = node.find("initial")) settings.initial = initial->as_quantity(unit);
+  return make_step_sequence(settings);
+}
+
 }  // namespace
 
 std::unique_ptr<Signal> read_signal(const ConfigNode& node, std::string_view si_unit,
@@ -193,7 +224,8 @@ std::unique_ptr<Signal> read_signal(const ConfigNode& node, std::string_view si_
   if (!node.is_map()) node.fail("expected a quantity or a signal mapping with a 'type'");
   const std::string type =
       node.choice("type", {"constant", "steps", "ramp", "piecewise_linear", "staircase", "sine",
-                           "multisine", "random_steps", "log_sweep", "sequence", "periodic"});
+                           "multisine", "random_steps", "log_sweep", "sequence", "periodic",
+                           "stepped_sine_sweep", "step_sequence"});
   if (type == "constant") return std::make_unique<ConstantSignal>(node.quantity("value", si_unit));
   if (type == "steps") return read_steps(node, si_unit);
   if (type == "ramp") return read_ramp(node, si_unit);
@@ -204,6 +236,8 @@ std::unique_ptr<Signal> read_signal(const ConfigNode& node, std::string_view si_
   if (type == "random_steps") return read_random_steps(node, si_unit, context);
   if (type == "log_sweep") return read_log_sweep(node, si_unit, context);
   if (type == "periodic") return read_periodic(node, si_unit, context);
+  if (type == "stepped_sine_sweep") return read_stepped_sine_sweep(node, si_unit);
+  if (type == "step_sequence") return read_step_sequence(node, si_unit);
   return read_sequence(node, si_unit, context);
 }
 

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "sim/analysis/coil_fit_command.h"
+#include "sim/analysis/control_tasks_command.h"
 #include "sim/analysis/spring_forces_command.h"
 #include "sim/cli/progress.h"
 #include "sim/config/config_error.h"
@@ -32,6 +33,7 @@ struct Options {
   bool quiet = false;
   tcpmsim::analysis::CoilFitOptions coil_fit;
   tcpmsim::SpringForcesOptions spring_forces;
+  tcpmsim::ControlTasksOptions control_tasks;
 };
 
 tcpmsim::Scenario load(const Options& options) {
@@ -93,6 +95,14 @@ int coil_fit(const Options& options) {
 // Thesis ch. 4: Table 4.2 and the modal checks (sim/analysis/spring_forces_command.h).
 int spring_forces(const Options& options) {
   tcpmsim::run_spring_forces_command(options.spring_forces, std::cout,
+                                     std::make_shared<tcpmsim::UnitSystem>());
+  return kSuccess;
+}
+
+// Thesis ch. 7: calibrated control tasks against section 7.4
+// (sim/analysis/control_tasks_command.h).
+int control_tasks(const Options& options) {
+  tcpmsim::run_control_tasks_command(options.control_tasks, std::cout,
                                      std::make_shared<tcpmsim::UnitSystem>());
   return kSuccess;
 }
@@ -178,6 +188,26 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 64));
   spring_forces_command->add_flag("-q,--quiet", options.spring_forces.quiet, "No tables");
 
+  CLI::App* control_tasks_command = app.add_subcommand(
+      "control-tasks", "Thesis ch. 7: calibrate, run the control tasks, compare with section 7.4");
+  control_tasks_command
+      ->add_option("configs", options.control_tasks.configs, "Control-task scenarios (YAML)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  control_tasks_command->add_option("-o,--output", options.control_tasks.output,
+                                    "Output file (default: results/control_tasks.h5)");
+  control_tasks_command
+      ->add_option("--set", options.control_tasks.settings.overrides,
+                   "Override a value in every run, e.g. --set drive.fidelity=switched")
+      ->type_name("KEY.PATH=VALUE");
+  control_tasks_command->add_flag(
+      "--no-calibration", [&](std::int64_t) { options.control_tasks.settings.calibrate = false; },
+      "Skip the calibration runs of section 7.3.4");
+  control_tasks_command
+      ->add_option("--threads", options.control_tasks.settings.threads, "Tasks in parallel")
+      ->check(CLI::Range(1, 64));
+  control_tasks_command->add_flag("-q,--quiet", options.control_tasks.quiet, "No tables");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -187,5 +217,6 @@ int main(int argc, char** argv) {
   if (run_command->parsed()) return guarded(run, options);
   if (coil_fit_command->parsed()) return guarded(coil_fit, options);
   if (spring_forces_command->parsed()) return guarded(spring_forces, options);
+  if (control_tasks_command->parsed()) return guarded(control_tasks, options);
   return guarded(validate, options);
 }

@@ -7,20 +7,6 @@
 
 namespace tcpmsim::testing {
 
-MemorySink::MemorySink(const System& system) {
-  for (const auto& channel : system.channels()) {
-    layout_.emplace_back(channel.group + "/" + channel.name, channel.signal_index);
-    channels[channel.group + "/" + channel.name];
-  }
-}
-
-void MemorySink::record(double t, std::span<const double> signals) {
-  time.push_back(t);
-  for (const auto& [name, index] : layout_) {
-    channels[name].push_back(signals[static_cast<std::size_t>(index)]);
-  }
-}
-
 namespace {
 const std::vector<double>& lookup(const std::map<std::string, std::vector<double>>& channels,
                                   const std::string& channel) {
@@ -29,10 +15,6 @@ const std::vector<double>& lookup(const std::map<std::string, std::vector<double
   return found->second;
 }
 }  // namespace
-
-const std::vector<double>& MemorySink::operator[](const std::string& channel) const {
-  return lookup(channels, channel);
-}
 
 const std::vector<double>& Trace::operator[](const std::string& channel) const {
   return lookup(channels, channel);

@@ -6,24 +6,12 @@
 #include <vector>
 
 #include "sim/integrator.h"
+#include "sim/memory_record.h"
 #include "sim/scenario.h"
 
 namespace tcpmsim::testing {
 
-// Every output of a run, kept in memory.
-class MemorySink final : public OutputSink {
- public:
-  explicit MemorySink(const System& system);
-  void record(double time, std::span<const double> signals) override;
-
-  std::vector<double> time;
-  // "group/name" -> samples
-  std::map<std::string, std::vector<double>> channels;
-  const std::vector<double>& operator[](const std::string& channel) const;
-
- private:
-  std::vector<std::pair<std::string, int>> layout_;
-};
+using MemorySink = MemoryRecord;
 
 struct Trace {
   std::vector<double> time;

@@ -1,0 +1,318 @@
+#include "sim/analysis/control_task_runner.h"
+
+#include <H5Cpp.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <numbers>
+#include <stdexcept>
+#include <thread>
+
+#include "controllers/pid_controller.h"
+#include "controllers/self_sensing_estimator.h"
+#include "controllers/signals/control_task_signals.h"
+#include "sim/memory_record.h"
+#include "sim/scenario.h"
+
+namespace tcpmsim {
+
+namespace {
+
+// Section 7.3.4's calibration, and the thesis' deflection controller used during the force one.
+constexpr double kCalibrationSettle = 30.0;  // [s] before averaging
+constexpr double kDeflectionAverage = 10.0;  // [s]
+constexpr double kForceAverage = 30.0;       // [s]
+constexpr const char* kHoldDeflection = "load={type: deflection, deflection: 20 mm}";
+constexpr const char* kHoldForce = "load={type: force, force: 0.40 N}";
+constexpr const char* kDeflectionControl =
+    "controller={target: deflection, reference: 20 mm, gains: {proportional: -1.08 W/mm, "
+    "integral_time: 2.5 s, "
+    "derivative_time: 0.625 s}, power_limits: [0.10 W, 3.12 W]}";
+
+template <typename T>
+T& find(System& system, const std::string& what) {
+  for (const auto& component : system.components()) {
+    if (auto* found = dynamic_cast<T*>(component.get())) return *found;
+  }
+  throw std::invalid_argument("the scenario has no " + what);
+}
+
+// The three runs of one task, loaded up front: udunits2's parser is not thread-safe.
+struct PreparedTask {
+  std::string config;
+  Scenario deflection_calibration, force_calibration, task;
+};
+
+std::vector<std::string> with(const std::vector<std::string>& base,
+                              std::initializer_list<std::string> extra) {
+  std::vector<std::string> all(base);
+  all.insert(all.end(), extra.begin(), extra.end());
+  return all;
+}
+
+PreparedTask prepare(const std::string& config, const ControlTaskSettings& settings,
+                     const std::shared_ptr<const UnitSystem>& units) {
+  const auto seconds = [](double s) { return "scenario.duration=" + std::to_string(s) + " s"; };
+  PreparedTask prepared{config, {}, {}, load_scenario(config, settings.overrides, units)};
+  if (settings.calibrate) {
+    prepared.deflection_calibration =
+        load_scenario(config,
+                      with(settings.overrides,
+                           {kHoldDeflection, seconds(kCalibrationSettle + kDeflectionAverage)}),
+                      units);
+    prepared.force_calibration = load_scenario(
+        config,
+        with(settings.overrides,
+             {kHoldForce, kDeflectionControl, seconds(kCalibrationSettle + kForceAverage)}),
+        units);
+  }
+  return prepared;
+}
+
+MemoryRecord simulate(Scenario& scenario, SolverStatistics* statistics = nullptr) {
+  MemoryRecord record(*scenario.system);
+  Integrator integrator(*scenario.system, scenario.solver);
+  const auto totals =
+      integrator.run(0.0, scenario.settings.duration,
+                     {scenario.settings.output_interval, scenario.settings.output_start}, record);
+  if (statistics) *statistics = totals;
+  return record;
+}
+
+// mean(truth - estimate) over [from, to).
+double offset_over(const MemoryRecord& record, const std::string& truth,
+                   const std::string& estimate, double from, double to) {
+  std::vector<double> t, e;
+  for (std::size_t k = 0; k < record.time.size(); ++k) {
+    if (record.time[k] < from || record.time[k] >= to || !std::isfinite(record[estimate][k]))
+      continue;
+    t.push_back(record[truth][k]);
+    e.push_back(record[estimate][k]);
+  }
+  return calibration_offset(t, e);
+}
+
+ControlTaskResult run_task(PreparedTask& prepared, bool calibrate) {
+  const auto started = std::chrono::steady_clock::now();
+  ControlTaskResult result;
+  result.scenario = prepared.task.settings.name;
+  auto& controller = find<PidController>(*prepared.task.system, "controller");
+  auto& estimator = find<SelfSensingEstimator>(*prepared.task.system, "self-sensing estimator");
+  result.controls_deflection = controller.target() == PidController::Target::deflection;
+  if (calibrate) {
+    const auto deflection = simulate(prepared.deflection_calibration);
+    result.deflection_offset =
+        offset_over(deflection, "muscle/deflection", "estimator/deflection", kCalibrationSettle,
+                    kCalibrationSettle + kDeflectionAverage);
+    find<SelfSensingEstimator>(*prepared.force_calibration.system, "estimator")
+        .set_deflection_offset(result.deflection_offset);
+    const auto force = simulate(prepared.force_calibration);
+    result.force_offset = offset_over(force, "muscle/force", "estimator/force", kCalibrationSettle,
+                                      kCalibrationSettle + kForceAverage);
+    estimator.set_deflection_offset(result.deflection_offset);
+    estimator.set_force_offset(result.force_offset);
+  }
+  const auto record = simulate(prepared.task, &result.statistics);
+
+  // The task starts at the reference's first change; before it the muscle settles.
+  const Signal& reference = *controller.signal_records().front().signal;
+  const double start = reference.next_breakpoint_after(0.0);
+  const std::string truth = result.controls_deflection ? "muscle/deflection" : "muscle/force";
+  const std::string estimate =
+      result.controls_deflection ? "estimator/deflection" : "estimator/force";
+  // One sample before the first change, so that the first step is seen as one.
+  std::vector<double> time, r, y;
+  for (std::size_t k = 0; k < record.time.size(); ++k) {
+    const bool last_before = k + 1 < record.time.size() && record.time[k + 1] >= start - 1e-9;
+    if (record.time[k] < start - 1e-9 && !last_before) continue;
+    time.push_back(record.time[k]);
+    r.push_back(record["controller/reference"][k]);
+    y.push_back(record[truth][k]);
+    if (record.time[k] >= start - 1e-9)
+      result.estimation_errors.push_back(record[estimate][k] - record[truth][k]);
+  }
+  if (const auto* sweep = dynamic_cast<const SteppedSineSignal*>(&reference)) {
+    result.sweep = true;
+    result.response = sweep_frequency_response(time, r, y, sweep->schedule());
+    result.bandwidth = bandwidth_3db(result.response);
+  } else {
+    result.rises = step_rise_times(time, r, y);
+  }
+  result.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return result;
+}
+
+}  // namespace
+
+std::vector<ControlTaskResult> run_control_tasks(const std::vector<std::string>& configs,
+                                                 const ControlTaskSettings& settings,
+                                                 std::shared_ptr<const UnitSystem> units) {
+  std::vector<PreparedTask> prepared;
+  for (const auto& config : configs) prepared.push_back(prepare(config, settings, units));
+  std::vector<ControlTaskResult> results(configs.size());
+  std::vector<std::string> errors(configs.size());
+  std::atomic<std::size_t> next{0};
+  auto work = [&] {
+    for (std::size_t k = next++; k < prepared.size(); k = next++) {
+      try {
+        results[k] = run_task(prepared[k], settings.calibrate);
+      } catch (const std::exception& error) {
+        errors[k] = error.what();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::max(1, settings.threads); ++t) pool.emplace_back(work);
+  work();
+  for (auto& thread : pool) thread.join();
+  for (std::size_t k = 0; k < configs.size(); ++k) {
+    if (!errors[k].empty()) throw std::runtime_error(configs[k] + ": " + errors[k]);
+  }
+  return results;
+}
+
+namespace {
+
+struct Summary {
+  std::vector<double> rise_times;  // reached steps only
+  int outliers = 0;                // steps charged their hold
+  std::optional<double> bandwidth;
+  std::vector<double> errors;
+};
+
+Summary summarise(const std::vector<ControlTaskResult>& results, bool deflection) {
+  Summary summary;
+  for (const auto& result : results) {
+    if (result.controls_deflection != deflection) continue;
+    for (const auto& rise : result.rises) {
+      if (rise.reached) {
+        summary.rise_times.push_back(rise.rise_time);
+      } else {
+        ++summary.outliers;
+      }
+    }
+    if (result.sweep) summary.bandwidth = result.bandwidth;
+    for (double e : result.estimation_errors) {
+      if (std::isfinite(e)) summary.errors.push_back(e);
+    }
+  }
+  return summary;
+}
+
+std::string range_text(const std::vector<double>& values, int outliers) {
+  char text[96];
+  if (values.empty()) {
+    std::snprintf(text, sizeof text, "none reached (%d at the hold)", outliers);
+  } else {
+    const auto [low, high] = std::minmax_element(values.begin(), values.end());
+    std::snprintf(text, sizeof text, "%.1f-%.1f s, %d at the 20 s hold", *low, *high, outliers);
+  }
+  return text;
+}
+
+}  // namespace
+
+std::string format_control_task_report(const std::vector<ControlTaskResult>& results) {
+  std::string text = "Thesis chapter 7 control tasks (section 7.4), ours against the thesis\n";
+  char line[256];
+  for (bool deflection : {true, false}) {
+    const Summary summary = summarise(results, deflection);
+    const double scale = deflection ? 1e3 : 1e3;  // mm or mN
+    const ErrorStatistics errors =
+        summary.errors.empty()
+            ? ErrorStatistics{}
+            : estimation_error_statistics(std::vector<double>(summary.errors.size(), 0.0),
+                                          summary.errors);
+    std::snprintf(line, sizeof line, "\n%s control:\n", deflection ? "Deflection" : "Force");
+    text += line;
+    std::snprintf(line, sizeof line, "  rise times (10-90 %%)     %-34s thesis %s\n",
+                  range_text(summary.rise_times, summary.outliers).c_str(),
+                  deflection ? "4.2-14.1 s, outliers at 20 s" : "2.1-5.1 s, outliers at 20 s");
+    text += line;
+    if (summary.bandwidth) {
+      std::snprintf(line, sizeof line, "  -3 dB bandwidth          %-34.3f thesis %.3f Hz\n",
+                    *summary.bandwidth, deflection ? 0.039 : 0.056);
+    } else {
+      std::snprintf(line, sizeof line, "  -3 dB bandwidth          %-34s thesis %.3f Hz\n",
+                    "not bracketed by the sweep", deflection ? 0.039 : 0.056);
+    }
+    text += line;
+    std::snprintf(line, sizeof line, "  estimation error         %+.2f +- %.2f %-24s thesis %s\n",
+                  scale * errors.mean, scale * errors.half_width_95,
+                  deflection ? "mm (mean, 95 % band)" : "mN (mean, 95 % band)",
+                  deflection ? "-0.27 +- 2.14 mm" : "+7.5 +- 29.0 mN");
+    text += line;
+  }
+  for (const auto& result : results) {
+    std::snprintf(line, sizeof line,
+                  "\n%s: calibration offsets %+.3f mm, %+.2f mN; %ld steps, %.2f s\n",
+                  result.scenario.c_str(), 1e3 * result.deflection_offset,
+                  1e3 * result.force_offset, result.statistics.steps, result.wall_seconds);
+    text += line;
+    for (const auto& point : result.response) {
+      std::snprintf(line, sizeof line, "  %.5f Hz  %+6.2f dB  %+7.1f deg\n", point.frequency,
+                    point.magnitude_db, point.phase * 180.0 / std::numbers::pi);
+      text += line;
+    }
+    for (const auto& rise : result.rises) {
+      std::snprintf(line, sizeof line, "  step at %6.1f s to %8.4f: rise %5.1f s%s\n",
+                    rise.step_time, rise.target, rise.rise_time,
+                    rise.reached ? "" : " (not reached)");
+      text += line;
+    }
+  }
+  return text;
+}
+
+void write_control_task_report(const std::vector<ControlTaskResult>& results,
+                               const std::string& path) {
+  H5::Exception::dontPrint();
+  const auto parent = std::filesystem::path(path).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent);
+  H5::H5File file(path + ".partial", H5F_ACC_TRUNC);
+  H5::StrType text(H5::PredType::C_S1, H5T_VARIABLE);
+  auto series = [&](H5::Group& group, const std::string& name, const std::vector<double>& values,
+                    const char* units) {
+    const hsize_t count = values.size();
+    H5::DataSet dataset =
+        group.createDataSet(name, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(1, &count));
+    if (count) dataset.write(values.data(), H5::PredType::NATIVE_DOUBLE);
+    dataset.createAttribute("units", text, H5::DataSpace(H5S_SCALAR))
+        .write(text, std::string(units));
+  };
+  for (const auto& result : results) {
+    H5::Group group = file.createGroup("/" + result.scenario);
+    const char* unit = result.controls_deflection ? "m" : "N";
+    series(group, "calibration_offsets", {result.deflection_offset, result.force_offset}, "m, N");
+    series(group, "estimation_error", result.estimation_errors, unit);
+    std::vector<double> step_times, rise_times, reached, frequencies, magnitude_db, phase;
+    for (const auto& rise : result.rises) {
+      step_times.push_back(rise.step_time), rise_times.push_back(rise.rise_time),
+          reached.push_back(rise.reached);
+    }
+    for (const auto& point : result.response) {
+      frequencies.push_back(point.frequency), magnitude_db.push_back(point.magnitude_db),
+          phase.push_back(point.phase);
+    }
+    if (!result.rises.empty()) {
+      series(group, "step_time", step_times, "s");
+      series(group, "rise_time", rise_times, "s");
+      series(group, "reached", reached, "1");
+    }
+    if (!result.response.empty()) {
+      series(group, "frequency", frequencies, "Hz");
+      series(group, "magnitude", magnitude_db, "dB");
+      series(group, "phase", phase, "rad");
+      series(group, "bandwidth", {result.bandwidth.value_or(std::nan(""))}, "Hz");
+    }
+  }
+  file.close();
+  std::filesystem::rename(path + ".partial", path);
+}
+
+}  // namespace tcpmsim

@@ -1,0 +1,26 @@
+#include "sim/memory_record.h"
+
+#include <stdexcept>
+
+namespace tcpmsim {
+
+MemoryRecord::MemoryRecord(const System& system) {
+  for (const auto& channel : system.channels()) {
+    layout_.emplace_back(channel.group + "/" + channel.name, channel.signal_index);
+    channels[channel.group + "/" + channel.name];
+  }
+}
+
+void MemoryRecord::record(double t, std::span<const double> signals) {
+  time.push_back(t);
+  for (const auto& [name, index] : layout_)
+    channels[name].push_back(signals[static_cast<std::size_t>(index)]);
+}
+
+const std::vector<double>& MemoryRecord::operator[](const std::string& channel) const {
+  const auto found = channels.find(channel);
+  if (found == channels.end()) throw std::out_of_range("no channel " + channel + " in the record");
+  return found->second;
+}
+
+}  // namespace tcpmsim

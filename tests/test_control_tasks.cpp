@@ -1,0 +1,157 @@
+// The chapter-7 control tasks through the engine: the thesis comparison command, what the
+// power limits make reachable, and the describing-function verdicts confirmed in simulation.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <sstream>
+
+#include "sim/analysis/control_task_runner.h"
+#include "sim/analysis/control_tasks_command.h"
+#include "sim/analysis/describing_function.h"
+#include "tests/support/test_support.h"
+
+using namespace tcpmsim;
+using namespace tcpmsim::testing;
+
+namespace {
+// Table 7.2.
+constexpr double kappa_P = 7.2e-3, kappa_c = 131.6e-3, k1 = 10.8, phi0 = 106.9e-3, P_min = 0.10,
+                 P_max = 3.12;
+
+std::vector<std::string> control_configs() {
+  std::vector<std::string> configs;
+  for (const char* name : {"deflection_steps", "deflection_sweep", "force_steps", "force_sweep"}) {
+    configs.push_back(source_path(std::string("configs/ch7_control/") + name + ".yaml"));
+  }
+  return configs;
+}
+
+// Force control at a fixed 20 mm, L* without artefacts (the describing-function setting), with a
+// reachable constant reference of 0.45 N.
+Trace force_loop(const std::string& gains, double seconds) {
+  Scenario scenario =
+      load_scenario(source_path("configs/ch7_control/force_steps.yaml"),
+                    {"scenario.duration=" + std::to_string(seconds) + " s",
+                     "drive.measurement={threshold_current: 14 mA}",
+                     "controller={target: force, reference: 0.45 N, gains: " + gains +
+                         ", power_limits: [0.10 W, 3.12 W]}"},
+                    shared_units());
+  return simulate(scenario);
+}
+}  // namespace
+
+TEST_CASE(
+    "The control-task command calibrates, runs all four tasks and reports beside the thesis") {
+  ControlTasksOptions options;
+  options.configs = control_configs();
+  options.output = (std::filesystem::temp_directory_path() / "tcpmsim_control_tasks.h5").string();
+  std::ostringstream out;
+  run_control_tasks_command(options, out, shared_units());
+  const std::string report = out.str();
+  CHECK_THAT(report, Catch::Contains("thesis 4.2-14.1 s"));
+  CHECK_THAT(report, Catch::Contains("thesis 0.039 Hz"));
+  CHECK_THAT(report, Catch::Contains("thesis 0.056 Hz"));
+  CHECK_THAT(report, Catch::Contains("thesis -0.27 +- 2.14 mm"));
+  CHECK_THAT(report, Catch::Contains("thesis +7.5 +- 29.0 mN"));
+  CHECK(std::filesystem::exists(options.output));
+}
+
+TEST_CASE("Force control at Table 7.2 reaches the published bandwidth, set by the power limits") {
+  ControlTaskSettings settings;
+  const auto results = run_control_tasks({control_configs()[3]}, settings, shared_units());
+  REQUIRE(results[0].bandwidth.has_value());
+  // Thesis 7.4: 0.056 Hz. With Kp = 540 W/N the drive saturates on every cycle, so the
+  // bandwidth is the power range's, which our plant (Table 7.2 itself) shares with the thesis'.
+  CHECK(*results[0].bandwidth == Approx(0.056).epsilon(0.10));
+}
+
+TEST_CASE("A force step is reached exactly when full power gets there within its hold") {
+  // At a fixed 20 mm the force is F = k1 x + F_T + phi0 (the dashpot stays relaxed), and with
+  // Kp = 540 W/N any error over 5.6 mN saturates the drive, so F_T moves by (7.1) at P_max (or
+  // P_min): F_T(t) = F_inf + (F_T0 - F_inf) exp(-kappa_c t). The 90 % level is reached after
+  // t = ln((F_inf - F_T0) / (F_inf - F_level)) / kappa_c, if ever.
+  ControlTaskSettings settings;
+  settings.calibrate = false;
+  const auto results = run_control_tasks({control_configs()[2]}, settings, shared_units());
+  REQUIRE(results[0].rises.size() == 7);
+  for (const auto& rise : results[0].rises) {
+    const bool up = rise.target > rise.start;
+    const double f_inf = kappa_P / kappa_c * (up ? P_max : P_min);
+    const double elastic = k1 * 0.020 + phi0;
+    const double level = rise.start + 0.9 * (rise.target - rise.start);
+    const double ratio = (f_inf - (rise.start - elastic)) / (f_inf - (level - elastic));
+    const double needed =
+        ratio > 0.0 ? std::log(ratio) / kappa_c : std::numeric_limits<double>::infinity();
+    INFO("step at " << rise.step_time << " s to " << rise.target << " N needs " << needed << " s");
+    if (needed < rise.hold - 1.0) {
+      CHECK(rise.reached);
+      CHECK(rise.upper_time - rise.step_time ==
+            Approx(needed).margin(0.2));  // sampling, 10 % start
+    }
+    if (needed > rise.hold + 1.0) CHECK_FALSE(rise.reached);
+  }
+}
+
+TEST_CASE("Deflection steps beyond what the power limits hold at 0.40 N are never reached") {
+  ControlTaskSettings settings;
+  settings.calibrate = false;
+  const auto results = run_control_tasks({control_configs()[0]}, settings, shared_units());
+  // Steady states of (7.1), (7.5), (7.6) at 0.40 N: x = (F - F_T - phi0) / k1 with
+  // F_T = (kappa_P / kappa_c) P in [P_min, P_max]: about 11.3 to 26.6 mm.
+  const double x_low = (0.40 - kappa_P / kappa_c * P_max - phi0) / k1;
+  const double x_high = (0.40 - kappa_P / kappa_c * P_min - phi0) / k1;
+  int unreachable = 0;
+  for (const auto& rise : results[0].rises) {
+    const double level = rise.start + 0.9 * (rise.target - rise.start);
+    if (level < x_low || level > x_high) {
+      ++unreachable;
+      INFO("step at " << rise.step_time << " s to " << rise.target);
+      CHECK_FALSE(rise.reached);
+    }
+  }
+  CHECK(unreachable >= 2);  // the steps to 10 and 30 mm
+}
+
+TEST_CASE("The thesis' force gains are predicted stable and settle in simulation") {
+  const PidGains gains{540.0, 1.0, 0.0};
+  const auto loop = force_control_loop(gains, kappa_P, kappa_c, 0.05);
+  SlsParameters mechanics{k1, 2.7, 4.3, phi0};
+  const double operating = equilibrium_power(0.45, 0.020, kappa_P, kappa_c, mechanics);
+  const auto prediction = predict_limit_cycle(loop, {P_min, P_max}, operating);
+  REQUIRE(prediction.verdict == LoopVerdict::stable);
+  const Trace trace = force_loop("{proportional: 540 W/N, integral_time: 1 s}", 120.0);
+  // After the transient the command is constant: the settled operating power P*.
+  const auto& power = trace["controller/power_command"];
+  for (std::size_t k = power.size() - 200; k < power.size(); ++k) {
+    REQUIRE(power[k] == Approx(operating).epsilon(1e-3));
+  }
+}
+
+TEST_CASE("A detuned loop that the criterion flags limit-cycles at the predicted amplitude") {
+  // Adding Td = 0.5 s to the thesis' force PI: the sampled loop's G(-1) exceeds 1, and the
+  // harmonic balance at the Nyquist frequency (exact for a period-2 sequence) predicts P
+  // alternating between the predicted extremes.
+  const PidGains gains{540.0, 1.0, 0.5};
+  const auto loop = force_control_loop(gains, kappa_P, kappa_c, 0.05);
+  SlsParameters mechanics{k1, 2.7, 4.3, phi0};
+  const auto prediction = predict_limit_cycle(
+      loop, {P_min, P_max}, equilibrium_power(0.45, 0.020, kappa_P, kappa_c, mechanics));
+  REQUIRE(prediction.verdict == LoopVerdict::limit_cycle);
+  const auto cycle = prediction.oscillation();
+  REQUIRE(cycle.has_value());
+  REQUIRE(cycle->at_nyquist);
+  INFO("P* " << prediction.operating_power << " predicted P " << cycle->power_low << " / "
+             << cycle->power_high << " demand " << cycle->demand_mean << " +- "
+             << cycle->demand_amplitude << " stable " << cycle->stable);
+  const Trace trace =
+      force_loop("{proportional: 540 W/N, integral_time: 1 s, derivative_time: 0.5 s}", 120.0);
+  // The last record is the end instant, where no sample is taken: compare up to the one before.
+  const auto& power = trace["controller/power_command"];
+  for (std::size_t k = power.size() - 200; k + 1 < power.size(); ++k) {
+    const double low = std::min(power[k], power[k - 1]), high = std::max(power[k], power[k - 1]);
+    REQUIRE(low == Approx(cycle->power_low).margin(1e-6));
+    REQUIRE(high == Approx(cycle->power_high).margin(1e-6));
+  }
+}
