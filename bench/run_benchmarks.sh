@@ -11,3 +11,10 @@ echo "== Maxwell's sum over 52 non-uniform windings (target < 50 us)"
 "$build_dir/bench/bench_maxwell"
 echo "== the ten Table 4.2 simulations (target < 2 s)"
 "$build_dir/bench/bench_spring_forces" configs/ch4
+echo "== a 1000 s closed-loop task (deflection sweep, PID through the estimator), targets 2 s switched, 50 ms averaged"
+task=configs/ch7_control/deflection_sweep.yaml
+for fidelity in switched averaged; do
+  echo "$fidelity BDF, hard stops at every edge and sample: $("$build_dir/bench/bench_integration" $task 3 "scenario.duration=1000 s" drive.fidelity=$fidelity)"
+done
+echo "naive, non-stiff Adams, averaged 1000 s: $("$build_dir/bench/bench_integration" $task 3 "scenario.duration=1000 s" drive.fidelity=averaged solver.method=adams)"
+echo "naive, non-stiff Adams, switched 0.5 s only (the 0.1 us electrical time constant bounds its steps): $("$build_dir/bench/bench_integration" $task 1 "scenario.duration=0.5 s" drive.fidelity=switched solver.method=adams)"

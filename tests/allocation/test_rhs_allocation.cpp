@@ -56,6 +56,35 @@ void operator delete[](void* memory, const std::nothrow_t&) noexcept {
 using namespace tcpmsim;
 using namespace tcpmsim::testing;
 
+TEST_CASE("A closed loop's sample instants, events and tolerance adaptation allocate nothing") {
+  for (const char* config : {"configs/ch7_control/force_steps.yaml", "configs/ch7_control/deflection_sweep.yaml"}) {
+    for (const char* fidelity : {"drive.fidelity=averaged", "drive.fidelity=switched"}) {
+      Scenario scenario = load_scenario(source_path(config), {fidelity}, shared_units());
+      System& system = *scenario.system;
+      std::vector<double> state(static_cast<std::size_t>(system.state_size()));
+      std::vector<double> absolute(state.size(), 1e-6), relative(state.size(), 1e-6);
+      std::vector<double> events(static_cast<std::size_t>(std::max(1, system.event_count())));
+      std::vector<int> flags(events.size(), 1);
+      system.initialize(0.0, state.data());
+      system.at_breakpoint(0.0, 0.0, state.data());  // first samples: buffers may fill lazily
+      const long before = allocations.load();
+      for (int k = 1; k < 400; ++k) {
+        const double t = 0.025 * k;  // sample instants and PWM edges in between
+        system.at_breakpoint(t, t, state.data());
+        system.adapt_tolerances(absolute.data(), relative.data());
+        if (system.event_count() > 0) {
+          system.evaluate_events(t, t, state.data(), events.data());
+          system.at_events(t, t, state.data(), flags.data());
+        }
+        (void)system.next_breakpoint_after(t);
+      }
+      const long allocated = allocations.load() - before;
+      INFO(config << " " << fidelity);
+      CHECK(allocated == 0);
+    }
+  }
+}
+
 TEST_CASE("Evaluating the right-hand side and the outputs allocates nothing") {
   for (const char* config :
        {"configs/ch7_identification.yaml", "configs/ch6_static_staircase.yaml"}) {
