@@ -220,33 +220,30 @@ std::string range_text(const std::vector<double>& values, int outliers) {
 std::string format_control_task_report(const std::vector<ControlTaskResult>& results) {
   std::string text = "Thesis chapter 7 control tasks (section 7.4), ours against the thesis\n";
   char line[256];
+  const auto add_row = [&](const char* quantity, const std::string& ours, const char* thesis) {
+    std::snprintf(line, sizeof line, "  %-24s %-34s thesis %s\n", quantity, ours.c_str(), thesis);
+    text += line;
+  };
   for (bool deflection : {true, false}) {
     const Summary summary = summarise(results, deflection);
-    const double scale = deflection ? 1e3 : 1e3;  // mm or mN
     const ErrorStatistics errors =
         summary.errors.empty()
             ? ErrorStatistics{}
             : estimation_error_statistics(std::vector<double>(summary.errors.size(), 0.0),
                                           summary.errors);
-    std::snprintf(line, sizeof line, "\n%s control:\n", deflection ? "Deflection" : "Force");
-    text += line;
-    std::snprintf(line, sizeof line, "  rise times (10-90 %%)     %-34s thesis %s\n",
-                  range_text(summary.rise_times, summary.outliers).c_str(),
-                  deflection ? "4.2-14.1 s, outliers at 20 s" : "2.1-5.1 s, outliers at 20 s");
-    text += line;
+    text += deflection ? "\nDeflection control:\n" : "\nForce control:\n";
+    add_row("rise times (10-90 %)", range_text(summary.rise_times, summary.outliers),
+            deflection ? "4.2-14.1 s, outliers at 20 s" : "2.1-5.1 s, outliers at 20 s");
+    std::string bandwidth = "not bracketed by the sweep";
     if (summary.bandwidth) {
-      std::snprintf(line, sizeof line, "  -3 dB bandwidth          %-34.3f thesis %.3f Hz\n",
-                    *summary.bandwidth, deflection ? 0.039 : 0.056);
-    } else {
-      std::snprintf(line, sizeof line, "  -3 dB bandwidth          %-34s thesis %.3f Hz\n",
-                    "not bracketed by the sweep", deflection ? 0.039 : 0.056);
+      std::snprintf(line, sizeof line, "%.3f Hz", *summary.bandwidth);
+      bandwidth = line;
     }
-    text += line;
-    std::snprintf(line, sizeof line, "  estimation error         %+.2f +- %.2f %-24s thesis %s\n",
-                  scale * errors.mean, scale * errors.half_width_95,
-                  deflection ? "mm (mean, 95 % band)" : "mN (mean, 95 % band)",
-                  deflection ? "-0.27 +- 2.14 mm" : "+7.5 +- 29.0 mN");
-    text += line;
+    add_row("-3 dB bandwidth", bandwidth, deflection ? "0.039 Hz" : "0.056 Hz");
+    // Both estimates are reported in milli-units: mm for deflection, mN for force.
+    std::snprintf(line, sizeof line, "%+.2f +- %.2f %s (mean, 95 %% band)", 1e3 * errors.mean,
+                  1e3 * errors.half_width_95, deflection ? "mm" : "mN");
+    add_row("estimation error", line, deflection ? "-0.27 +- 2.14 mm" : "+7.5 +- 29.0 mN");
   }
   for (const auto& result : results) {
     std::snprintf(line, sizeof line,
