@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <limits>
 #include <sstream>
+#include <string>
+#include <utility>
 
 #include "sim/analysis/control_task_runner.h"
 #include "sim/analysis/control_tasks_command.h"
@@ -65,6 +67,23 @@ TEST_CASE("Force control at Table 7.2 reaches the published bandwidth, set by th
   // Thesis 7.4: 0.056 Hz. With Kp = 540 W/N the drive saturates on every cycle, so the
   // bandwidth is the power range's, which our plant (Table 7.2 itself) shares with the thesis'.
   CHECK(*results[0].bandwidth == Approx(0.056).epsilon(0.10));
+}
+
+TEST_CASE("The printed force gain is the one of its decade that reproduces the bandwidth") {
+  // Is Kp = 540 W/N a misprint? Any gain whose proportional band (3.02 W / Kp) is well under
+  // the sweep's 50 mN amplitude turns the loop into a relay bounded by the power limits, so
+  // 54 W/N reproduces the 0.056 Hz as well; 5.4 W/N does not. 5400 W/N would too, but lies
+  // within 6 % of the sampled loop's stability limit (10.55 Kp, test_describing_function),
+  // which a tuned loop would not. The printed value stands.
+  ControlTaskSettings settings;
+  settings.calibrate = false;
+  for (const auto& [gain, reproduces] : {std::pair{"54 W/N", true}, std::pair{"5.4 W/N", false}}) {
+    settings.overrides = {std::string("controller.gains.proportional=") + gain};
+    const auto results = run_control_tasks({control_configs()[3]}, settings, shared_units());
+    REQUIRE(results[0].bandwidth.has_value());
+    INFO("Kp = " << gain << ": " << *results[0].bandwidth << " Hz");
+    CHECK((std::abs(*results[0].bandwidth - 0.056) < 0.1 * 0.056) == reproduces);
+  }
 }
 
 TEST_CASE("A force step is reached exactly when full power gets there within its hold") {
