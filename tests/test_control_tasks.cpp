@@ -69,6 +69,40 @@ TEST_CASE("Force control at Table 7.2 reaches the published bandwidth, set by th
   CHECK(*results[0].bandwidth == Approx(0.056).epsilon(0.10));
 }
 
+TEST_CASE("A plant that heats harder than the estimator's model biases only the force estimate") {
+  // Plant and model stay separate: the plant is a physical thermal node (C, hA, phi_T) whose
+  // heating gain phi_T/C is 25 % above the estimator's kappa_P, with the same kappa_c. L* does
+  // not see temperature, so the deflection loop still holds x at 20 mm under 0.40 N, and at
+  // rest the plant's F_T = F - k1 x - phi_0 needs P* = F_T hA/phi_T. The estimator's model
+  // turns P* into kappa_P/kappa_c P* = F_T / 1.25: the force estimate is low by F_T / 5.
+  const double plant_heating = 1.25 * kappa_P, force_per_kelvin = 4e-3;
+  const double capacity = force_per_kelvin / plant_heating, conductance = kappa_c * capacity;
+  Scenario scenario = load_scenario(
+      source_path("configs/ch7_control/deflection_steps.yaml"),
+      {"scenario.duration=120 s", "drive.measurement={threshold_current: 14 mA}",
+       "controller={target: deflection, reference: 20 mm, gains: {proportional: -1.08 W/mm, "
+       "integral_time: 2.5 s, derivative_time: 0.625 s}, power_limits: [0.10 W, 3.12 W]}",
+       "muscle.thermal={heat_capacity: " + number(capacity) + " J/K, conductance: " +
+           number(conductance) + " W/K, ambient_temperature: 23 degC, initial_temperature: 23 degC}",
+       "muscle.thermal_force={form: physical, force_per_kelvin: 4 mN/K, reference_temperature: 23 "
+       "degC}"},
+      shared_units());
+  const Trace trace = simulate(scenario);
+  const double thermal_force = 0.40 - k1 * 0.020 - phi0;
+  const double operating_power = thermal_force * conductance / force_per_kelvin;
+  const std::size_t settled = trace.time.size() - 200;  // the last 10 s
+  const auto mean_from = [&](const std::string& channel) {
+    const auto& values = trace[channel];
+    double sum = 0.0;
+    for (std::size_t k = settled; k < values.size(); ++k) sum += values[k];
+    return sum / static_cast<double>(values.size() - settled);
+  };
+  CHECK(mean_from("muscle/deflection") == Approx(0.020).epsilon(1e-4));
+  CHECK(mean_from("controller/power_command") == Approx(operating_power).epsilon(1e-3));
+  CHECK(mean_from("estimator/force") - mean_from("muscle/force") ==
+        Approx(-thermal_force / 5.0).epsilon(1e-3));
+}
+
 TEST_CASE("The printed force gain is the one of its decade that reproduces the bandwidth") {
   // Is Kp = 540 W/N a misprint? Any gain whose proportional band (3.02 W / Kp) is well under
   // the sweep's 50 mN amplitude turns the loop into a relay bounded by the power limits, so
