@@ -21,7 +21,7 @@
 
 namespace {
 // Table 7.2 (SI) and the deflection task's load and limits.
-constexpr double kHeatingGain = 7.2e-3, kCoolingRate = 131.6e-3;  // N/J, 1/s
+constexpr double kHeatingGain = 7.2e-3, kCoolingRate = 131.6e-3;                  // N/J, 1/s
 constexpr double kK1 = 10.8, kK2 = 2.7, kDamping = 4.3, kForceOffset = 106.9e-3;  // SI
 constexpr double kLoadForce = 0.40, kMinPower = 0.10, kMaxPower = 3.12;           // N, W
 constexpr double kPeriod = 0.05;                                                  // 20 Hz
@@ -54,7 +54,7 @@ double run(bool adams, double duration, Counts& counts) {
   N_Vector tolerances = N_VNew_Serial(2, context);
   double* y = N_VGetArrayPointer(state);
   y[0] = 0.0;
-  y[1] = (kLoadForce - kForceOffset) / kK1;  // rested at 0.40 N
+  y[1] = (kLoadForce - kForceOffset) / kK1;   // rested at 0.40 N
   N_VGetArrayPointer(tolerances)[0] = 1e-10;  // N, as ReducedThermalForce
   N_VGetArrayPointer(tolerances)[1] = 1e-12;  // m, as SlsMechanics
   void* memory = CVodeCreate(adams ? CV_ADAMS : CV_BDF, context);

@@ -113,7 +113,8 @@ TEST_CASE("tcpmsim coil-fit reports a bad data line with its location and exit c
   CHECK(outcome.err.find("error: expected 24 fields separated by ';'") != std::string::npos);
   CHECK_FALSE(fs::exists(work / "fit.h5"));
   // A data directory that does not exist is a usage error.
-  CHECK(run("coil-fit '" + source_path("configs/springs/s2.yaml") + "' --data '" + (work / "none").string() + "'",
+  CHECK(run("coil-fit '" + source_path("configs/springs/s2.yaml") + "' --data '" +
+                (work / "none").string() + "'",
             work)
             .exit_code == 2);
   fs::remove_all(work);

@@ -82,8 +82,9 @@ TEST_CASE("A plant that heats harder than the estimator's model biases only the 
       {"scenario.duration=120 s", "drive.measurement={threshold_current: 14 mA}",
        "controller={target: deflection, reference: 20 mm, gains: {proportional: -1.08 W/mm, "
        "integral_time: 2.5 s, derivative_time: 0.625 s}, power_limits: [0.10 W, 3.12 W]}",
-       "muscle.thermal={heat_capacity: " + number(capacity) + " J/K, conductance: " +
-           number(conductance) + " W/K, ambient_temperature: 23 degC, initial_temperature: 23 degC}",
+       "muscle.thermal={heat_capacity: " + number(capacity) +
+           " J/K, conductance: " + number(conductance) +
+           " W/K, ambient_temperature: 23 degC, initial_temperature: 23 degC}",
        "muscle.thermal_force={form: physical, force_per_kelvin: 4 mN/K, reference_temperature: 23 "
        "degC}"},
       shared_units());

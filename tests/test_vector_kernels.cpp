@@ -34,7 +34,8 @@ struct Vectors {
 struct Family {
   N_Vector make(double scale) {
     N_Vector v = N_VClone(prototype);
-    for (sunindextype i = 0; i < NV_LENGTH_S(v); ++i) NV_Ith_S(v, i) = stream.uniform(-scale, scale);
+    for (sunindextype i = 0; i < NV_LENGTH_S(v); ++i)
+      NV_Ith_S(v, i) = stream.uniform(-scale, scale);
     owned.push_back(v);
     return v;
   }
@@ -47,10 +48,13 @@ struct Family {
 };
 
 bool same_bits(N_Vector a, N_Vector b) {
-  return std::memcmp(NV_DATA_S(a), NV_DATA_S(b), sizeof(double) * static_cast<std::size_t>(NV_LENGTH_S(a))) == 0;
+  return std::memcmp(NV_DATA_S(a), NV_DATA_S(b),
+                     sizeof(double) * static_cast<std::size_t>(NV_LENGTH_S(a))) == 0;
 }
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool same_bits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
 
 }  // namespace
 
@@ -58,8 +62,9 @@ TEST_CASE("Optimised serial kernels are bit-identical to Debian's SUNDIALS kerne
   Vectors vectors(37);
   Family debian{vectors.reference, RandomStream(9, "kernels")};
   Family ours{vectors.optimised, RandomStream(9, "kernels")};  // same numbers
-  const double coefficients[][2] = {{1, 1}, {1, -1}, {-1, 1}, {-1, -1}, {0.3, 0.3}, {0.3, -0.3},
-                                    {1, 0.7}, {0.7, 1}, {-1, 0.7}, {0.7, -1}, {0.3, 0.7}, {0, 0.5}};
+  const double coefficients[][2] = {{1, 1},     {1, -1},     {-1, 1},    {-1, -1},
+                                    {0.3, 0.3}, {0.3, -0.3}, {1, 0.7},   {0.7, 1},
+                                    {-1, 0.7},  {0.7, -1},   {0.3, 0.7}, {0, 0.5}};
   for (const auto& ab : coefficients) {
     INFO("a = " << ab[0] << ", b = " << ab[1]);
     N_Vector x1 = debian.make(3), y1 = debian.make(2), z1 = debian.make(1);
@@ -107,13 +112,19 @@ TEST_CASE("Optimised serial kernels are bit-identical to Debian's SUNDIALS kerne
       Z1.push_back(debian.make(1)), Z2.push_back(ours.make(1));
     }
     N_Vector s1 = debian.make(1), s2 = ours.make(1);
-    N_VLinearCombination(count, c.data(), X1.data(), s1), N_VLinearCombination(count, c.data(), X2.data(), s2);
+    N_VLinearCombination(count, c.data(), X1.data(), s1),
+        N_VLinearCombination(count, c.data(), X2.data(), s2);
     CHECK(same_bits(s1, s2));
-    N_VLinearCombination(count, c.data(), X1.data(), X1[0]), N_VLinearCombination(count, c.data(), X2.data(), X2[0]);
+    N_VLinearCombination(count, c.data(), X1.data(), X1[0]),
+        N_VLinearCombination(count, c.data(), X2.data(), X2[0]);
     CHECK(same_bits(X1[0], X2[0]));
-    N_VScaleAddMulti(count, c.data(), s1, X1.data(), Z1.data()), N_VScaleAddMulti(count, c.data(), s2, X2.data(), Z2.data());
-    for (int k = 0; k < count; ++k) CHECK(same_bits(Z1[static_cast<std::size_t>(k)], Z2[static_cast<std::size_t>(k)]));
-    N_VScaleAddMulti(count, c.data(), s1, X1.data(), X1.data()), N_VScaleAddMulti(count, c.data(), s2, X2.data(), X2.data());
-    for (int k = 0; k < count; ++k) CHECK(same_bits(X1[static_cast<std::size_t>(k)], X2[static_cast<std::size_t>(k)]));
+    N_VScaleAddMulti(count, c.data(), s1, X1.data(), Z1.data()),
+        N_VScaleAddMulti(count, c.data(), s2, X2.data(), Z2.data());
+    for (int k = 0; k < count; ++k)
+      CHECK(same_bits(Z1[static_cast<std::size_t>(k)], Z2[static_cast<std::size_t>(k)]));
+    N_VScaleAddMulti(count, c.data(), s1, X1.data(), X1.data()),
+        N_VScaleAddMulti(count, c.data(), s2, X2.data(), X2.data());
+    for (int k = 0; k < count; ++k)
+      CHECK(same_bits(X1[static_cast<std::size_t>(k)], X2[static_cast<std::size_t>(k)]));
   }
 }

@@ -57,7 +57,8 @@ using namespace tcpmsim;
 using namespace tcpmsim::testing;
 
 TEST_CASE("A closed loop's sample instants, events and tolerance adaptation allocate nothing") {
-  for (const char* config : {"configs/ch7_control/force_steps.yaml", "configs/ch7_control/deflection_sweep.yaml"}) {
+  for (const char* config :
+       {"configs/ch7_control/force_steps.yaml", "configs/ch7_control/deflection_sweep.yaml"}) {
     for (const char* fidelity : {"drive.fidelity=averaged", "drive.fidelity=switched"}) {
       Scenario scenario = load_scenario(source_path(config), {fidelity}, shared_units());
       System& system = *scenario.system;
