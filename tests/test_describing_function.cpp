@@ -13,6 +13,7 @@
 #include "models/thermal_force.h"
 #include "sim/analysis/control_tasks.h"
 #include "sim/analysis/describing_function.h"
+#include "tests/support/test_components.h"
 #include "tests/support/test_support.h"
 
 using namespace tcpmsim;
@@ -64,32 +65,6 @@ std::vector<double> run_force_loop(const PidGains& gains, int samples) {
   return commands;
 }
 
-// Publishes a constant.
-class Constant final : public Component {
- public:
-  Constant(std::string group, double value)
-      : Component(std::move(group), "constant"), value_(value) {}
-  std::vector<OutputDeclaration> outputs() const override { return {{"value", "1"}}; }
-  void compute_outputs(const Evaluation& e) const override { set_output(e, 0, value_); }
-
- private:
-  double value_;
-};
-
-// The plant's L* from its deflection by (7.3).
-class DecayTimeSensor final : public Component {
- public:
-  explicit DecayTimeSensor(InductanceLaw law) : Component("sensor", "decay_time"), law_(law) {}
-  std::vector<OutputDeclaration> outputs() const override { return {{"inductance_measure", "s"}}; }
-  std::vector<InputDeclaration> inputs() const override { return {{"deflection", true}}; }
-  void compute_outputs(const Evaluation& e) const override {
-    set_output(e, 0, law_(input(e, 0), law_.reference_temperature));
-  }
-
- private:
-  InductanceLaw law_;
-};
-
 // Deflection control at a constant 0.40 N through the engine: the plant (7.1), (7.5)-(7.6)
 // under an imposed force, L* by (7.3), the estimator with the thesis' filters, the PID.
 MemorySink run_deflection_loop(const PidGains& gains, double duration) {
@@ -113,7 +88,7 @@ MemorySink run_deflection_loop(const PidGains& gains, double duration) {
       0.40 - kMechanics.k1 * 20e-3 - kMechanics.force_offset;
 
   auto system = std::make_unique<System>();
-  system->add(std::make_unique<Constant>("load", 0.40));
+  system->add(std::make_unique<SignalSource>("load", std::make_unique<ConstantSignal>(0.40)));
   auto& heating = system->add(std::make_unique<ReducedThermalForce>("muscle", thermal));
   auto& mechanics =
       system->add(std::make_unique<SlsMechanics>("muscle", kMechanics, SlsMechanics::Drive::force));

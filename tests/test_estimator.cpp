@@ -14,6 +14,7 @@
 #include "controllers/signals/piecewise_linear_signal.h"
 #include "models/thermal_force.h"
 #include "sim/analysis/control_tasks.h"
+#include "tests/support/test_components.h"
 #include "tests/support/test_support.h"
 
 using namespace tcpmsim;
@@ -47,36 +48,6 @@ double measure_of(const SelfSensingEstimatorParameters& p, double deflection) {
   return p.inductance(deflection, p.inductance.reference_temperature);  // (7.3)
 }
 
-// Publishes a prescribed signal, sampled as the engine dictates (left limit at breakpoints).
-class SignalSource final : public Component {
- public:
-  SignalSource(std::string group, std::unique_ptr<Signal> signal)
-      : Component(std::move(group), "source"), signal_(std::move(signal)) {}
-  std::vector<OutputDeclaration> outputs() const override { return {{"value", "1"}}; }
-  void compute_outputs(const Evaluation& e) const override {
-    set_output(e, 0, signal_->value(e.signal_time));
-  }
-  double next_breakpoint_after(double t) const override {
-    return signal_->next_breakpoint_after(t);
-  }
-
- private:
-  std::unique_ptr<Signal> signal_;
-};
-
-// The plant's L* from its deflection by (7.3).
-class DecayTimeSensor final : public Component {
- public:
-  explicit DecayTimeSensor(InductanceLaw law) : Component("sensor", "decay_time"), law_(law) {}
-  std::vector<OutputDeclaration> outputs() const override { return {{"inductance_measure", "s"}}; }
-  std::vector<InputDeclaration> inputs() const override { return {{"deflection", true}}; }
-  void compute_outputs(const Evaluation& e) const override {
-    set_output(e, 0, law_(input(e, 0), law_.reference_temperature));
-  }
-
- private:
-  InductanceLaw law_;
-};
 }  // namespace
 
 TEST_CASE(

@@ -11,6 +11,7 @@
 #include "controllers/signals/constant_signal.h"
 #include "controllers/signals/piecewise_constant_signal.h"
 #include "controllers/signals/sine_signal.h"
+#include "tests/support/test_components.h"
 #include "tests/support/test_support.h"
 
 using namespace tcpmsim;
@@ -26,23 +27,6 @@ PidSettings settings(double kp, double ti, double td, double p_min, double p_max
   s.power_max = p_max;
   return s;
 }
-
-// Publishes a prescribed signal (left limit at breakpoints, as the engine samples).
-class SignalSource final : public Component {
- public:
-  SignalSource(std::string group, std::unique_ptr<Signal> signal)
-      : Component(std::move(group), "source"), signal_(std::move(signal)) {}
-  std::vector<OutputDeclaration> outputs() const override { return {{"value", "1"}}; }
-  void compute_outputs(const Evaluation& e) const override {
-    set_output(e, 0, signal_->value(e.signal_time));
-  }
-  double next_breakpoint_after(double t) const override {
-    return signal_->next_breakpoint_after(t);
-  }
-
- private:
-  std::unique_ptr<Signal> signal_;
-};
 
 // The integrator needs a continuous state; these systems are all sampled otherwise.
 class Idle final : public Component {

@@ -135,6 +135,27 @@ void add_common(CLI::App& command, Options& options) {
       ->type_name("KEY.PATH=VALUE");
 }
 
+// A thesis analysis: a sub-command over a list of input files, writing one HDF5 file and
+// printing its tables unless quiet.
+struct AnalysisInputs {
+  const char* name;
+  const char* description;
+  std::vector<std::string>& files;
+};
+
+CLI::App* add_analysis(CLI::App& app, const char* name, const char* description,
+                       AnalysisInputs inputs, std::string& output, const char* default_output,
+                       bool& quiet) {
+  CLI::App* command = app.add_subcommand(name, description);
+  command->add_option(inputs.name, inputs.files, inputs.description)
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("-o,--output", output,
+                      std::string("Output file (default: ") + default_output + ")");
+  command->add_flag("-q,--quiet", quiet, "No tables");
+  return command;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -156,46 +177,35 @@ int main(int argc, char** argv) {
       app.add_subcommand("validate", "Check a scenario file and list its states and outputs");
   add_common(*validate_command, options);
 
-  CLI::App* coil_fit_command = app.add_subcommand(
-      "coil-fit", "Thesis Tables 2.2/2.3 and the ch. 3 comparison from measured coil-spring data");
-  coil_fit_command->add_option("springs", options.coil_fit.spring_files, "Spring files (YAML)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  CLI::App* coil_fit_command =
+      add_analysis(app, "coil-fit",
+                   "Thesis Tables 2.2/2.3 and the ch. 3 comparison from measured coil-spring data",
+                   {"springs", "Spring files (YAML)", options.coil_fit.spring_files},
+                   options.coil_fit.output, "results/coil_fit.h5", options.coil_fit.quiet);
   options.coil_fit.data_directory = "data/coil-spring-inductance";
   coil_fit_command
       ->add_option("--data", options.coil_fit.data_directory,
                    "Directory of the sequence files <name>.csv (default: the thesis' data, "
                    "data/coil-spring-inductance)")
       ->check(CLI::ExistingDirectory);
-  coil_fit_command->add_option("-o,--output", options.coil_fit.output,
-                               "Output file (default: results/coil_fit.h5)");
-  coil_fit_command->add_flag("-q,--quiet", options.coil_fit.quiet, "No tables");
 
-  CLI::App* spring_forces_command = app.add_subcommand(
-      "spring-forces",
-      "Thesis Table 4.2: force sensing on an oscillating coil spring, and modal checks");
-  spring_forces_command
-      ->add_option("configs", options.spring_forces.configs, "Chapter-4 scenarios (YAML)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  spring_forces_command->add_option("-o,--output", options.spring_forces.output,
-                                    "Output file (default: results/spring_forces.h5)");
+  CLI::App* spring_forces_command = add_analysis(
+      app, "spring-forces",
+      "Thesis Table 4.2: force sensing on an oscillating coil spring, and modal checks",
+      {"configs", "Chapter-4 scenarios (YAML)", options.spring_forces.configs},
+      options.spring_forces.output, "results/spring_forces.h5", options.spring_forces.quiet);
   spring_forces_command
       ->add_option("--window", options.spring_forces.window, "Analysed tail of each run [s]")
       ->check(CLI::PositiveNumber);
   spring_forces_command
       ->add_option("--threads", options.spring_forces.threads, "Simulations in parallel")
       ->check(CLI::Range(1, 64));
-  spring_forces_command->add_flag("-q,--quiet", options.spring_forces.quiet, "No tables");
 
-  CLI::App* control_tasks_command = app.add_subcommand(
-      "control-tasks", "Thesis ch. 7: calibrate, run the control tasks, compare with section 7.4");
-  control_tasks_command
-      ->add_option("configs", options.control_tasks.configs, "Control-task scenarios (YAML)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  control_tasks_command->add_option("-o,--output", options.control_tasks.output,
-                                    "Output file (default: results/control_tasks.h5)");
+  CLI::App* control_tasks_command = add_analysis(
+      app, "control-tasks",
+      "Thesis ch. 7: calibrate, run the control tasks, compare with section 7.4",
+      {"configs", "Control-task scenarios (YAML)", options.control_tasks.configs},
+      options.control_tasks.output, "results/control_tasks.h5", options.control_tasks.quiet);
   control_tasks_command
       ->add_option("--set", options.control_tasks.settings.overrides,
                    "Override a value in every run, e.g. --set drive.fidelity=switched")
@@ -206,7 +216,6 @@ int main(int argc, char** argv) {
   control_tasks_command
       ->add_option("--threads", options.control_tasks.settings.threads, "Tasks in parallel")
       ->check(CLI::Range(1, 64));
-  control_tasks_command->add_flag("-q,--quiet", options.control_tasks.quiet, "No tables");
 
   try {
     app.parse(argc, argv);

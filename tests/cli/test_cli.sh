@@ -51,6 +51,21 @@ contains "$work/err" "more than 3 solver steps" "the failure is explained"
 
 expect 4 "an unwritable output is an output error" -- "$tcpmsim" run "$config" --set "scenario.duration=1 s" -o /proc/tcpmsim/run.h5
 
+# The analysis commands share the scenario rules: usage errors exit 2, configuration errors 3.
+tasks="$source_dir/configs/ch7_control"
+expect 2 "control-tasks without a scenario is a usage error" -- "$tcpmsim" control-tasks
+expect 3 "a bad --set on control-tasks is a configuration error" -- "$tcpmsim" control-tasks \
+  "$tasks/force_steps.yaml" --set "controller.gains.proportional=540 W" -o "$work/tasks.h5"
+contains "$work/err" "error: controller.gains.proportional:" "control-tasks names the key"
+[[ ! -e $work/tasks.h5 ]] && echo "ok: no control-task file after the error" || { echo "FAIL: tasks.h5 written"; failures=$((failures + 1)); }
+expect 0 "control-tasks writes its report" -- "$tcpmsim" control-tasks "$tasks/force_steps.yaml" \
+  --no-calibration --set "scenario.duration=60 s" -o "$work/tasks.h5"
+contains "$work/out" "thesis 2.1-5.1 s" "control-tasks prints the thesis' values beside ours"
+[[ -s $work/tasks.h5 ]] && echo "ok: control-task file written" || { echo "FAIL: no tasks.h5"; failures=$((failures + 1)); }
+expect 2 "spring-forces with a missing file is a usage error" -- "$tcpmsim" spring-forces "$work/none.yaml"
+expect 2 "coil-fit with a missing data directory is a usage error" -- "$tcpmsim" coil-fit \
+  "$source_dir/configs/springs/s1.yaml" --data "$work/none"
+
 if /usr/bin/python3 -c "import h5py, matplotlib" 2>/dev/null; then
   expect 0 "the plot tool reads the record" -- /usr/bin/python3 "$source_dir/tools/plot_traces.py" "$work/run.h5" -o "$work/run.png"
   [[ -s $work/run.png ]] && echo "ok: plot written" || { echo "FAIL: no plot"; failures=$((failures + 1)); }
