@@ -85,7 +85,7 @@ def main():
 
     print(f"default scenario {arguments.config}: {samples} samples, {segments} segments, "
           f"{steps} CVODE steps, rtol {rtol:g}")
-    print(f"  tcpmsim integration {statistics.median(integration_times) * 1e3:7.2f} ms  ({bench_line})")
+    print(f"  tcpmsim integration {statistics.median(integration_times) * 1e3:7.2f} ms  (last round: {bench_line})")
     print(f"  tcpmsim end to end  {statistics.median(process_times) * 1e3:7.2f} ms per `tcpmsim run` process")
     print(f"  SciPy BDF           {statistics.median(scipy_times) * 1e3:7.2f} ms integration")
     print(f"  speed-up, integration: {statistics.median(integration_ratios):.0f}x "
