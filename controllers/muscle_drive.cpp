@@ -4,14 +4,9 @@
 #include <cmath>
 #include <limits>
 
-namespace tcpmsim {
+#include "sim/time_grid.h"
 
-namespace {
-bool at_instant(double t, double instant) {
-  return std::abs(t - instant) <=
-         64.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t));
-}
-}  // namespace
+namespace tcpmsim {
 
 MuscleDrive::MuscleDrive(std::string group, MuscleDriveParameters parameters,
                          std::unique_ptr<Signal> power_demand)
@@ -124,15 +119,16 @@ void MuscleDrive::initialize(const Evaluation&, std::span<double> own_state) con
 
 void MuscleDrive::at_breakpoint(const Evaluation& evaluation) {
   const double t = evaluation.time;
-  const double k = std::round(t / period());
-  if (at_instant(t, k * period())) {
+  if (grid_index_at(t, period())) {
     const double resistance = input(evaluation, kHeaterResistance);
     demand_ = power_demand_ ? power_demand_->value(t) : input(evaluation, kCommand);
     duty_ = duty_for_power(demand_, resistance);
     last_on_current_ = on_current(resistance);
     on_until_ = t + on_fraction(duty_) * period();
-    on_ = on_until_ > t;
-  } else if (on_ && at_instant(t, on_until_)) {
+    // An on-phase too short to be a breakpoint of its own (time_margin) is no on-phase: its
+    // end would never be delivered and the current would stay on all period.
+    on_ = on_until_ > t + 2.0 * time_margin(t);
+  } else if (on_ && same_instant(t, on_until_)) {
     on_ = false;
     switched_off_at_ = t;
     awaiting_decay_ = true;
@@ -144,16 +140,15 @@ void MuscleDrive::sense(const Evaluation& evaluation) {
   // of the off-phase just ended from L and R now, before the estimator samples, as the
   // switched drive's located crossing is available by then.
   if (parameters_.fidelity != MuscleDriveParameters::Fidelity::averaged) return;
-  const double t = evaluation.time;
-  const double k = std::round(t / period());
-  if (k < 1.0 || !at_instant(t, k * period()) || on_fraction(duty_) >= 1.0) return;
+  // Nothing to report after a period with the current always on, or never on.
+  const auto k = grid_index_at(evaluation.time, period());
+  if (!k || *k < 1 || on_fraction(duty_) >= 1.0 || on_fraction(duty_) <= 0.0) return;
   measure_ =
       measured(decay_time(input(evaluation, kInductance), input(evaluation, kHeaterResistance)));
 }
 
 double MuscleDrive::next_breakpoint_after(double t) const {
-  double next = (std::floor(t / period()) + 1.0) * period();
-  while (next <= t) next += period();
+  double next = next_grid_instant(t, period());
   if (parameters_.fidelity == MuscleDriveParameters::Fidelity::switched && on_ && on_until_ > t) {
     next = std::min(next, on_until_);
   }

@@ -6,15 +6,11 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "sim/time_grid.h"
+
 namespace tcpmsim {
 
 namespace {
-// The engine's "same instant" margin (sim/integrator.cpp): a reference step this close to a
-// sample instant is taken to be at it.
-double instant_margin(double t) {
-  return 64.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t));
-}
-
 double idle_power(const PidSettings& settings) {
   return settings.initial_power.value_or(settings.power_min);
 }
@@ -151,11 +147,12 @@ std::vector<Component::SignalRecord> PidController::signal_records() const {
 }
 
 double PidController::reference_at(double time) const {
-  return reference_->value(time + instant_margin(time));
+  // A reference step within the engine's "same instant" margin is taken to be at the sample.
+  return reference_->value(time + time_margin(time));
 }
 
 double PidController::reference_slope_at(double time) const {
-  return reference_->slope(time + instant_margin(time));
+  return reference_->slope(time + time_margin(time));
 }
 
 void PidController::hold_idle() {

@@ -1,6 +1,7 @@
 #include "sim/integrator.h"
 
 #include "sim/serial_vector_kernels.h"
+#include "sim/time_grid.h"
 
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
@@ -64,11 +65,6 @@ struct detail::CvodeHandles {
 };
 
 namespace {
-
-// Times closer than this are the same instant for breakpoint purposes.
-double time_margin(double t) {
-  return 64.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t));
-}
 
 std::string format_number(double value) {
   std::ostringstream text;

@@ -1,7 +1,6 @@
 #include "sim/sampled_component.h"
 
-#include <cmath>
-#include <limits>
+#include "sim/time_grid.h"
 
 namespace tcpmsim {
 
@@ -10,18 +9,11 @@ SampledComponent::SampledComponent(std::string group, std::string kind, double p
     : Component(std::move(group), std::move(kind)), period_(period), stage_(stage) {}
 
 double SampledComponent::next_breakpoint_after(double t) const {
-  // Instants are k * period, computed by multiplication so they never drift.
-  double k = std::floor(t / period_) + 1.0;
-  while (k * period_ <= t) k += 1.0;
-  return k * period_;
+  return next_grid_instant(t, period_);
 }
 
 void SampledComponent::at_breakpoint(const Evaluation& evaluation) {
-  const double k = std::round(evaluation.time / period_);
-  const double tolerance =
-      64.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(evaluation.time));
-  if (std::abs(evaluation.time - k * period_) <= tolerance)
-    sample(evaluation, static_cast<long>(k));
+  if (const auto k = grid_index_at(evaluation.time, period_)) sample(evaluation, *k);
 }
 
 }  // namespace tcpmsim
