@@ -21,11 +21,17 @@ const char* linear_solver_name(LinearSolverKind kind) {
   return "dense";
 }
 
+SolverStatistics integrate(Scenario& scenario, OutputSink& sink,
+                           const Integrator::Progress& progress) {
+  Integrator integrator(*scenario.system, scenario.solver);
+  return integrator.run(0.0, scenario.settings.duration,
+                        {scenario.settings.output_interval, scenario.settings.output_start}, sink,
+                        progress);
+}
+
 RunOutcome run_scenario(Scenario& scenario, const std::string& output_path,
                         const Integrator::Progress& progress) {
   const auto started = std::chrono::steady_clock::now();
-  const auto parent = std::filesystem::path(output_path).parent_path();
-  if (!parent.empty()) std::filesystem::create_directories(parent);
 
   RecordMetadata metadata{scenario.settings.name,
                           scenario.source,
@@ -38,11 +44,8 @@ RunOutcome run_scenario(Scenario& scenario, const std::string& output_path,
   RunOutcome outcome;
   try {
     Hdf5Recorder recorder(output_path, *scenario.system, metadata);
-    Integrator integrator(*scenario.system, scenario.solver);
     try {
-      outcome.statistics = integrator.run(
-          0.0, scenario.settings.duration,
-          {scenario.settings.output_interval, scenario.settings.output_start}, recorder, progress);
+      outcome.statistics = integrate(scenario, recorder, progress);
       recorder.finish(outcome.statistics);
       outcome.output_path = output_path;
       outcome.succeeded = true;

@@ -15,6 +15,10 @@ struct RunOutcome {
   std::string failure;  // the solver's message when it failed
 };
 
+// Integrates a scenario over its duration and hands `sink` the outputs at its output times.
+SolverStatistics integrate(Scenario& scenario, OutputSink& sink,
+                           const Integrator::Progress& progress = {});
+
 // Integrates a scenario and records it to `output_path` (HDF5). A solver failure does not throw:
 // it is reported in the outcome and the partial record is kept as a .failed.h5 file. I/O errors
 // throw std::runtime_error.

@@ -57,6 +57,16 @@ class System {
   const std::vector<std::unique_ptr<Component>>& components() const { return components_; }
   int signal_index(std::string_view output) const;  // -1 if absent
 
+  // The first component of type T, or nullptr. Like components(), it hands out the components
+  // themselves: an analysis calibrates an estimator between runs through it.
+  template <typename T>
+  T* find() const {
+    for (const auto& component : components_) {
+      if (auto* found = dynamic_cast<T*>(component.get())) return found;
+    }
+    return nullptr;
+  }
+
   void initialize(double time, double* state);
   // Computes every output, observed ones included; afterwards signals() holds them.
   void evaluate_outputs(double time, double signal_time, const double* state);

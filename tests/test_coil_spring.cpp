@@ -35,10 +35,9 @@ spring:
 }
 
 const CoilSpringChain& chain_of(const Scenario& scenario) {
-  for (const auto& component : scenario.system->components()) {
-    if (const auto* chain = dynamic_cast<const CoilSpringChain*>(component.get())) return *chain;
-  }
-  throw std::logic_error("no chain");
+  const auto* chain = scenario.system->find<const CoilSpringChain>();
+  if (!chain) throw std::logic_error("no chain");
+  return *chain;
 }
 
 double rms(const std::vector<double>& a, const std::vector<double>& b, std::size_t from) {

@@ -9,6 +9,7 @@
 
 #include "controllers/signals/control_task_signals.h"
 #include "sim/analysis/control_tasks.h"
+#include "sim/analysis/statistics.h"
 
 using namespace tcpmsim;
 
@@ -296,11 +297,10 @@ TEST_CASE("Error statistics, percentiles, R^2 and calibration offsets on small e
   // Order statistics 1, 2, 3, 4 at positions 0..3; p = 2.5 % sits at 0.075, 97.5 % at 2.925.
   CHECK(stats.percentile_2_5 == Approx(1.075).epsilon(1e-15));
   CHECK(stats.percentile_97_5 == Approx(3.925).epsilon(1e-15));
-  CHECK(percentile_of({5.0, 1.0, 3.0}, 50.0) == 3.0);
-  CHECK(percentile_of({5.0, 1.0, 3.0}, 100.0) == 5.0);
+  CHECK(analysis::percentile({5.0, 1.0, 3.0}, 50.0) == 3.0);
+  CHECK(analysis::percentile({5.0, 1.0, 3.0}, 100.0) == 5.0);
   // (7.15): truth 1, 2, 3, 4 (mean 2.5, total 5) against 1, 2, 3, 5 (residual 1).
-  CHECK(coefficient_of_determination(std::vector<double>{1, 2, 3, 4},
-                                     std::vector<double>{1, 2, 3, 5}) ==
+  CHECK(analysis::r_squared(std::vector<double>{1, 2, 3, 4}, std::vector<double>{1, 2, 3, 5}) ==
         Approx(0.8).epsilon(1e-15));
   CHECK(calibration_offset(std::vector<double>{20e-3, 20e-3},
                            std::vector<double>{20.5e-3, 20.3e-3}) ==

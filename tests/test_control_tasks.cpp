@@ -60,6 +60,25 @@ TEST_CASE(
   CHECK(std::filesystem::exists(options.output));
 }
 
+TEST_CASE("Calibration adds its measured offsets to those the scenario configures") {
+  ControlTaskSettings settings;
+  settings.overrides = {"scenario.duration=60 s"};
+  const std::string config = control_configs()[2];
+  const auto plain = run_control_tasks({config}, settings, shared_units());
+  settings.overrides.push_back(
+      "estimator.calibration={deflection_offset: 1 mm, force_offset: 10 mN}");
+  const auto configured = run_control_tasks({config}, settings, shared_units());
+  // The hold-deflection run sees the estimate 1 mm high and measures 1 mm less; the force run,
+  // its deflection already calibrated, sees the force 10 mN high. What the task's estimator ends
+  // with, configured plus measured, is the same, and so is every estimation error.
+  CHECK(configured[0].deflection_offset == Approx(plain[0].deflection_offset - 1e-3).margin(1e-12));
+  CHECK(configured[0].force_offset == Approx(plain[0].force_offset - 10e-3).margin(1e-9));
+  REQUIRE(configured[0].estimation_errors.size() == plain[0].estimation_errors.size());
+  for (std::size_t k = 0; k < plain[0].estimation_errors.size(); ++k) {
+    CHECK(configured[0].estimation_errors[k] == Approx(plain[0].estimation_errors[k]).margin(1e-9));
+  }
+}
+
 TEST_CASE("Force control at Table 7.2 reaches the published bandwidth, set by the power limits") {
   ControlTaskSettings settings;
   const auto results = run_control_tasks({control_configs()[3]}, settings, shared_units());

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 
+#include "sim/io/hdf5_files.h"
 #include "sim/io/hdf5_recorder.h"
 #include "sim/run.h"
 #include "tcpmsim/version.h"
@@ -56,7 +57,7 @@ TEST_CASE(
   const std::string path = temporary_path("layout.h5");
   const RunOutcome outcome = run_scenario(scenario, path);
   REQUIRE(outcome.succeeded);
-  CHECK_FALSE(std::filesystem::exists(Hdf5Recorder::partial_path(path)));
+  CHECK_FALSE(std::filesystem::exists(partial_path(path)));
 
   const H5::H5File file(path, H5F_ACC_RDONLY);
   CHECK(read_series(file, "/time") == expected.time);
@@ -118,7 +119,7 @@ TEST_CASE("A failed run is kept as .failed.h5 with its reason, and never under t
   const RunOutcome outcome = run_scenario(scenario, path);
   CHECK_FALSE(outcome.succeeded);
   CHECK_FALSE(std::filesystem::exists(path));
-  CHECK_FALSE(std::filesystem::exists(Hdf5Recorder::partial_path(path)));
+  CHECK_FALSE(std::filesystem::exists(partial_path(path)));
   REQUIRE(outcome.output_path == temporary_path("failing.failed.h5"));
   const H5::H5File file(outcome.output_path, H5F_ACC_RDONLY);
   const H5::Group root = file.openGroup("/");
@@ -131,8 +132,8 @@ TEST_CASE("An interrupted recording leaves no file behind") {
   const std::string path = temporary_path("interrupted.h5");
   {
     Hdf5Recorder recorder(path, *scenario.system, {});
-    CHECK(std::filesystem::exists(Hdf5Recorder::partial_path(path)));
+    CHECK(std::filesystem::exists(partial_path(path)));
   }  // destroyed without finish(): as when an exception unwinds
-  CHECK_FALSE(std::filesystem::exists(Hdf5Recorder::partial_path(path)));
+  CHECK_FALSE(std::filesystem::exists(partial_path(path)));
   CHECK_FALSE(std::filesystem::exists(path));
 }

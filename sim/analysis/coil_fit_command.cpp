@@ -1,7 +1,5 @@
 #include "sim/analysis/coil_fit_command.h"
 
-#include <filesystem>
-
 #include "sim/analysis/coil_fit_analysis.h"
 #include "sim/analysis/coil_fit_report.h"
 
@@ -15,12 +13,6 @@ std::string run_coil_fit(const CoilFitOptions& options, std::ostream& out,
   if (!options.quiet) print_coil_fit_report(out, results);
 
   const std::string output = options.output.empty() ? "results/coil_fit.h5" : options.output;
-  try {
-    const auto parent = std::filesystem::path(output).parent_path();
-    if (!parent.empty()) std::filesystem::create_directories(parent);
-  } catch (const std::filesystem::filesystem_error& error) {
-    throw std::runtime_error(std::string("cannot write the output: ") + error.what());
-  }
   write_coil_fit_hdf5(output, results, {options.data_directory, options.spring_files});
   if (!options.quiet) out << "\nwrote " << output << "\n";
   return output;

@@ -1,22 +1,19 @@
 #include "sim/analysis/control_task_runner.h"
 
-#include <H5Cpp.h>
-
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <numbers>
 #include <stdexcept>
-#include <thread>
 
 #include "controllers/pid_controller.h"
 #include "controllers/self_sensing_estimator.h"
 #include "controllers/signals/control_task_signals.h"
+#include "sim/io/hdf5_writer.h"
 #include "sim/memory_record.h"
-#include "sim/scenario.h"
+#include "sim/parallel_runs.h"
+#include "sim/run.h"
 
 namespace tcpmsim {
 
@@ -34,10 +31,8 @@ constexpr const char* kDeflectionControl =
     "derivative_time: 0.625 s}, power_limits: [0.10 W, 3.12 W]}";
 
 template <typename T>
-T& find(System& system, const std::string& what) {
-  for (const auto& component : system.components()) {
-    if (auto* found = dynamic_cast<T*>(component.get())) return *found;
-  }
+T& required(const Scenario& scenario, const std::string& what) {
+  if (auto* found = scenario.system->find<T>()) return *found;
   throw std::invalid_argument("the scenario has no " + what);
 }
 
@@ -75,10 +70,7 @@ PreparedTask prepare(const std::string& config, const ControlTaskSettings& setti
 
 MemoryRecord simulate(Scenario& scenario, SolverStatistics* statistics = nullptr) {
   MemoryRecord record(*scenario.system);
-  Integrator integrator(*scenario.system, scenario.solver);
-  const auto totals =
-      integrator.run(0.0, scenario.settings.duration,
-                     {scenario.settings.output_interval, scenario.settings.output_start}, record);
+  const auto totals = integrate(scenario, record);
   if (statistics) *statistics = totals;
   return record;
 }
@@ -100,21 +92,24 @@ ControlTaskResult run_task(PreparedTask& prepared, bool calibrate) {
   const auto started = std::chrono::steady_clock::now();
   ControlTaskResult result;
   result.scenario = prepared.task.settings.name;
-  auto& controller = find<PidController>(*prepared.task.system, "controller");
-  auto& estimator = find<SelfSensingEstimator>(*prepared.task.system, "self-sensing estimator");
+  auto& controller = required<PidController>(prepared.task, "controller");
+  auto& estimator = required<SelfSensingEstimator>(prepared.task, "self-sensing estimator");
   result.controls_deflection = controller.target() == PidController::Target::deflection;
   if (calibrate) {
     const auto deflection = simulate(prepared.deflection_calibration);
     result.deflection_offset =
         offset_over(deflection, "muscle/deflection", "estimator/deflection", kCalibrationSettle,
                     kCalibrationSettle + kDeflectionAverage);
-    find<SelfSensingEstimator>(*prepared.force_calibration.system, "estimator")
-        .set_deflection_offset(result.deflection_offset);
+    // The measured offsets add to those the scenario configures (calibration_offset).
+    auto& force_estimator =
+        required<SelfSensingEstimator>(prepared.force_calibration, "self-sensing estimator");
+    force_estimator.set_deflection_offset(force_estimator.deflection_offset() +
+                                          result.deflection_offset);
     const auto force = simulate(prepared.force_calibration);
     result.force_offset = offset_over(force, "muscle/force", "estimator/force", kCalibrationSettle,
                                       kCalibrationSettle + kForceAverage);
-    estimator.set_deflection_offset(result.deflection_offset);
-    estimator.set_force_offset(result.force_offset);
+    estimator.set_deflection_offset(estimator.deflection_offset() + result.deflection_offset);
+    estimator.set_force_offset(estimator.force_offset() + result.force_offset);
   }
   const auto record = simulate(prepared.task, &result.statistics);
 
@@ -124,11 +119,11 @@ ControlTaskResult run_task(PreparedTask& prepared, bool calibrate) {
   const std::string truth = result.controls_deflection ? "muscle/deflection" : "muscle/force";
   const std::string estimate =
       result.controls_deflection ? "estimator/deflection" : "estimator/force";
-  // One sample before the first change, so that the first step is seen as one.
+  // From one sample before the first change, so that the first step is seen as one.
+  const auto first_after = static_cast<std::size_t>(
+      std::lower_bound(record.time.begin(), record.time.end(), start - 1e-9) - record.time.begin());
   std::vector<double> time, r, y;
-  for (std::size_t k = 0; k < record.time.size(); ++k) {
-    const bool last_before = k + 1 < record.time.size() && record.time[k + 1] >= start - 1e-9;
-    if (record.time[k] < start - 1e-9 && !last_before) continue;
+  for (std::size_t k = first_after > 0 ? first_after - 1 : 0; k < record.time.size(); ++k) {
     time.push_back(record.time[k]);
     r.push_back(record["controller/reference"][k]);
     y.push_back(record[truth][k]);
@@ -136,7 +131,6 @@ ControlTaskResult run_task(PreparedTask& prepared, bool calibrate) {
       result.estimation_errors.push_back(record[estimate][k] - record[truth][k]);
   }
   if (const auto* sweep = dynamic_cast<const SteppedSineSignal*>(&reference)) {
-    result.sweep = true;
     result.response = sweep_frequency_response(time, r, y, sweep->schedule());
     result.bandwidth = bandwidth_3db(result.response);
   } else {
@@ -155,24 +149,8 @@ std::vector<ControlTaskResult> run_control_tasks(const std::vector<std::string>&
   std::vector<PreparedTask> prepared;
   for (const auto& config : configs) prepared.push_back(prepare(config, settings, units));
   std::vector<ControlTaskResult> results(configs.size());
-  std::vector<std::string> errors(configs.size());
-  std::atomic<std::size_t> next{0};
-  auto work = [&] {
-    for (std::size_t k = next++; k < prepared.size(); k = next++) {
-      try {
-        results[k] = run_task(prepared[k], settings.calibrate);
-      } catch (const std::exception& error) {
-        errors[k] = error.what();
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < std::max(1, settings.threads); ++t) pool.emplace_back(work);
-  work();
-  for (auto& thread : pool) thread.join();
-  for (std::size_t k = 0; k < configs.size(); ++k) {
-    if (!errors[k].empty()) throw std::runtime_error(configs[k] + ": " + errors[k]);
-  }
+  run_in_parallel(configs, settings.threads,
+                  [&](std::size_t k) { results[k] = run_task(prepared[k], settings.calibrate); });
   return results;
 }
 
@@ -196,7 +174,7 @@ Summary summarise(const std::vector<ControlTaskResult>& results, bool deflection
         ++summary.outliers;
       }
     }
-    if (result.sweep) summary.bandwidth = result.bandwidth;
+    if (!result.response.empty()) summary.bandwidth = result.bandwidth;
     for (double e : result.estimation_errors) {
       if (std::isfinite(e)) summary.errors.push_back(e);
     }
@@ -227,10 +205,7 @@ std::string format_control_task_report(const std::vector<ControlTaskResult>& res
   for (bool deflection : {true, false}) {
     const Summary summary = summarise(results, deflection);
     const ErrorStatistics errors =
-        summary.errors.empty()
-            ? ErrorStatistics{}
-            : estimation_error_statistics(std::vector<double>(summary.errors.size(), 0.0),
-                                          summary.errors);
+        summary.errors.empty() ? ErrorStatistics{} : error_statistics(summary.errors);
     text += deflection ? "\nDeflection control:\n" : "\nForce control:\n";
     add_row("rise times (10-90 %)", range_text(summary.rise_times, summary.outliers),
             deflection ? "4.2-14.1 s, outliers at 20 s" : "2.1-5.1 s, outliers at 20 s");
@@ -268,25 +243,15 @@ std::string format_control_task_report(const std::vector<ControlTaskResult>& res
 
 void write_control_task_report(const std::vector<ControlTaskResult>& results,
                                const std::string& path) {
-  H5::Exception::dontPrint();
-  const auto parent = std::filesystem::path(path).parent_path();
-  if (!parent.empty()) std::filesystem::create_directories(parent);
-  H5::H5File file(path + ".partial", H5F_ACC_TRUNC);
-  H5::StrType text(H5::PredType::C_S1, H5T_VARIABLE);
-  auto series = [&](H5::Group& group, const std::string& name, const std::vector<double>& values,
-                    const char* units) {
-    const hsize_t count = values.size();
-    H5::DataSet dataset =
-        group.createDataSet(name, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(1, &count));
-    if (count) dataset.write(values.data(), H5::PredType::NATIVE_DOUBLE);
-    dataset.createAttribute("units", text, H5::DataSpace(H5S_SCALAR))
-        .write(text, std::string(units));
-  };
+  Hdf5Writer file(path);
   for (const auto& result : results) {
-    H5::Group group = file.createGroup("/" + result.scenario);
+    auto series = [&](const std::string& name, const std::vector<double>& values,
+                      const char* units) {
+      file.write(result.scenario + "/" + name, values, units);
+    };
     const char* unit = result.controls_deflection ? "m" : "N";
-    series(group, "calibration_offsets", {result.deflection_offset, result.force_offset}, "m, N");
-    series(group, "estimation_error", result.estimation_errors, unit);
+    series("calibration_offsets", {result.deflection_offset, result.force_offset}, "m, N");
+    series("estimation_error", result.estimation_errors, unit);
     std::vector<double> step_times, rise_times, reached, frequencies, magnitude_db, phase;
     for (const auto& rise : result.rises) {
       step_times.push_back(rise.step_time), rise_times.push_back(rise.rise_time),
@@ -297,19 +262,18 @@ void write_control_task_report(const std::vector<ControlTaskResult>& results,
           phase.push_back(point.phase);
     }
     if (!result.rises.empty()) {
-      series(group, "step_time", step_times, "s");
-      series(group, "rise_time", rise_times, "s");
-      series(group, "reached", reached, "1");
+      series("step_time", step_times, "s");
+      series("rise_time", rise_times, "s");
+      series("reached", reached, "1");
     }
     if (!result.response.empty()) {
-      series(group, "frequency", frequencies, "Hz");
-      series(group, "magnitude", magnitude_db, "dB");
-      series(group, "phase", phase, "rad");
-      series(group, "bandwidth", {result.bandwidth.value_or(std::nan(""))}, "Hz");
+      series("frequency", frequencies, "Hz");
+      series("magnitude", magnitude_db, "dB");
+      series("phase", phase, "rad");
+      series("bandwidth", {result.bandwidth.value_or(std::nan(""))}, "Hz");
     }
   }
-  file.close();
-  std::filesystem::rename(path + ".partial", path);
+  file.commit();
 }
 
 }  // namespace tcpmsim

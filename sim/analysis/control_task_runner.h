@@ -18,7 +18,6 @@ namespace tcpmsim {
 struct ControlTaskResult {
   std::string scenario;
   bool controls_deflection = false;
-  bool sweep = false;
   double deflection_offset = 0.0;                // [m], added to the estimate
   double force_offset = 0.0;                     // [N]
   std::vector<StepRise> rises;                   // step tasks

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "sim/analysis/statistics.h"
+
 namespace tcpmsim {
 
 namespace {
@@ -199,71 +201,42 @@ std::optional<double> bandwidth_3db(std::span<const FrequencyResponsePoint> poin
   return std::nullopt;
 }
 
-double percentile_of(std::vector<double> values, double p) {
-  if (values.empty()) throw std::invalid_argument("percentile_of: no values");
-  if (!(p >= 0.0 && p <= 100.0)) throw std::invalid_argument("percentile_of: p outside [0, 100]");
-  std::sort(values.begin(), values.end());
-  const double position = (double(values.size()) - 1.0) * p / 100.0;
-  const auto below = static_cast<std::size_t>(std::floor(position));
-  if (below + 1 >= values.size()) return values.back();
-  return values[below] + (position - double(below)) * (values[below + 1] - values[below]);
-}
-
-ErrorStatistics estimation_error_statistics(std::span<const double> truth,
-                                            std::span<const double> estimate) {
-  const char* what = "estimation_error_statistics";
+namespace {
+// estimate - truth, both finite and of equal length.
+std::vector<double> estimation_errors(std::span<const double> truth,
+                                      std::span<const double> estimate, const char* what) {
   require_same_length(truth.size(), estimate.size(), what);
-  if (truth.size() < 2)
-    throw std::invalid_argument("estimation_error_statistics: need two samples");
   require_finite(truth, what, "truth");
   require_finite(estimate, what, "estimate");
   std::vector<double> errors(truth.size());
   for (std::size_t i = 0; i < truth.size(); ++i) errors[i] = estimate[i] - truth[i];
+  return errors;
+}
+}  // namespace
+
+ErrorStatistics error_statistics(std::span<const double> errors) {
+  if (errors.size() < 2) throw std::invalid_argument("error_statistics: need two samples");
+  require_finite(errors, "error_statistics", "errors");
   ErrorStatistics statistics;
   statistics.count = errors.size();
-  const double n = double(errors.size());
-  double sum = 0.0, sum_squares = 0.0;
-  for (const double e : errors) sum += e, sum_squares += e * e;
-  statistics.mean = sum / n;
-  double deviations = 0.0;
-  for (const double e : errors) deviations += (e - statistics.mean) * (e - statistics.mean);
-  statistics.standard_deviation = std::sqrt(deviations / (n - 1.0));
+  statistics.mean = analysis::mean(errors);
+  statistics.standard_deviation = analysis::standard_deviation(errors);
   statistics.half_width_95 = kZ975 * statistics.standard_deviation;
-  statistics.rmse = std::sqrt(sum_squares / n);
-  statistics.percentile_2_5 = percentile_of(errors, 2.5);
-  statistics.percentile_97_5 = percentile_of(std::move(errors), 97.5);
+  statistics.rmse = analysis::root_mean_square(errors);
+  const std::vector<double> values(errors.begin(), errors.end());
+  statistics.percentile_2_5 = analysis::percentile(values, 2.5);
+  statistics.percentile_97_5 = analysis::percentile(values, 97.5);
   return statistics;
 }
 
-double coefficient_of_determination(std::span<const double> truth,
-                                    std::span<const double> estimate) {
-  const char* what = "coefficient_of_determination";
-  require_same_length(truth.size(), estimate.size(), what);
-  if (truth.empty()) throw std::invalid_argument("coefficient_of_determination: no samples");
-  require_finite(truth, what, "truth");
-  require_finite(estimate, what, "estimate");
-  double mean = 0.0;
-  for (const double y : truth) mean += y;
-  mean /= double(truth.size());
-  double residual = 0.0, total = 0.0;
-  for (std::size_t i = 0; i < truth.size(); ++i) {
-    residual += (truth[i] - estimate[i]) * (truth[i] - estimate[i]);
-    total += (truth[i] - mean) * (truth[i] - mean);
-  }
-  if (total == 0.0)
-    throw std::invalid_argument("coefficient_of_determination: the truth is constant");
-  return 1.0 - residual / total;  // (7.15)
+ErrorStatistics estimation_error_statistics(std::span<const double> truth,
+                                            std::span<const double> estimate) {
+  return error_statistics(estimation_errors(truth, estimate, "estimation_error_statistics"));
 }
 
 double calibration_offset(std::span<const double> truth, std::span<const double> estimate) {
-  const char* what = "calibration_offset";
-  require_same_length(truth.size(), estimate.size(), what);
   if (truth.empty()) throw std::invalid_argument("calibration_offset: no samples");
-  require_finite(truth, what, "truth");
-  require_finite(estimate, what, "estimate");
-  double sum = 0.0;
-  for (std::size_t i = 0; i < truth.size(); ++i) sum += truth[i] - estimate[i];
-  return sum / double(truth.size());
+  return -analysis::mean(estimation_errors(truth, estimate, "calibration_offset"));
 }
 
 }  // namespace tcpmsim

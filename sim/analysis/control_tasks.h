@@ -116,18 +116,13 @@ struct ErrorStatistics {
   double percentile_97_5 = 0.0;
   double rmse = 0.0;
 };
+ErrorStatistics error_statistics(std::span<const double> errors);
+// Of the errors estimate - truth.
 ErrorStatistics estimation_error_statistics(std::span<const double> truth,
                                             std::span<const double> estimate);
-
-// (7.15) R^2 = 1 - sum (y - f)^2 / sum (y - mean y)^2, y the truth and f the estimate.
-double coefficient_of_determination(std::span<const double> truth,
-                                    std::span<const double> estimate);
 
 // The calibration offset of section 7.3.4: mean(truth - estimate) over the calibration window,
 // to be added to the estimator's current offset.
 double calibration_offset(std::span<const double> truth, std::span<const double> estimate);
-
-// The p-th percentile (0 <= p <= 100) by linear interpolation between order statistics.
-double percentile_of(std::vector<double> values, double p);
 
 }  // namespace tcpmsim

@@ -1,19 +1,16 @@
 #include "sim/analysis/spring_forces.h"
 
-#include <H5Cpp.h>
-
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <map>
 #include <stdexcept>
-#include <thread>
 
 #include "models/coil_spring_chain.h"
 #include "models/coil_spring_inductance.h"
-#include "sim/scenario.h"
+#include "sim/io/hdf5_writer.h"
+#include "sim/parallel_runs.h"
+#include "sim/run.h"
 
 namespace tcpmsim {
 
@@ -42,14 +39,6 @@ class ForceWindow final : public OutputSink {
   double start_;
   std::vector<int> indices_;
 };
-
-template <typename T>
-const T& find_component(const System& system, const std::string& scenario) {
-  for (const auto& component : system.components()) {
-    if (const auto* found = dynamic_cast<const T*>(component.get())) return *found;
-  }
-  throw std::invalid_argument(scenario + ": not a coil-spring scenario with an inductance sensor");
-}
 
 ForceDifferences differences(const ForceWindow& window, double nominal) {
   ForceDifferences result{};
@@ -80,10 +69,13 @@ struct PreparedRun {
 PreparedRun prepare(const std::string& config, std::shared_ptr<const UnitSystem> units) {
   const auto started = std::chrono::steady_clock::now();
   PreparedRun run{load_scenario(config, {}, std::move(units))};
-  const auto& chain = find_component<CoilSpringChain>(*run.scenario.system, config);
-  const auto& sensor = find_component<CoilSpringInductance>(*run.scenario.system, config);
-  run.nominal_force = chain.parameters().stiffness * (sensor.parameters().longest_length -
-                                                      chain.parameters().rest_length);  // (4.14)
+  const auto* chain = run.scenario.system->find<const CoilSpringChain>();
+  const auto* sensor = run.scenario.system->find<const CoilSpringInductance>();
+  if (!chain || !sensor) {
+    throw std::invalid_argument(config + ": not a coil-spring scenario with an inductance sensor");
+  }
+  run.nominal_force = chain->parameters().stiffness * (sensor->parameters().longest_length -
+                                                       chain->parameters().rest_length);  // (4.14)
   run.load_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return run;
@@ -96,12 +88,9 @@ SpringForceRow integrate(PreparedRun& run, double window) {
   row.scenario = scenario.settings.name;
   row.nominal_force = run.nominal_force;
   ForceWindow sink(*scenario.system, scenario.settings.duration - window);
-  Integrator integrator(*scenario.system, scenario.solver);
-  row.statistics =
-      integrator.run(0.0, scenario.settings.duration,
-                     {scenario.settings.output_interval, scenario.settings.output_start}, sink);
+  row.statistics = integrate(scenario, sink);
   row.simulated = differences(sink, row.nominal_force);
-  row.thesis = thesis_table_4_2(row.scenario, row.thesis_rms_printed);
+  row.thesis = thesis_table_4_2(row.scenario);
   row.wall_seconds =
       run.load_seconds +
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -110,8 +99,7 @@ SpringForceRow integrate(PreparedRun& run, double window) {
 
 }  // namespace
 
-std::optional<ForceDifferences> thesis_table_4_2(const std::string& scenario,
-                                                 std::array<bool, 3>& rms_printed) {
+std::optional<ForceDifferences> thesis_table_4_2(const std::string& scenario) {
   // Thesis Table 4.2: RMSD F_i, F_o, F_L | maximum F_i, F_o, F_L, in % of F_nom. The OCR of the
   // S_T half-resonance row lost its first value (marked NaN).
   static const std::map<std::string, std::array<double, 6>> table{
@@ -131,7 +119,6 @@ std::optional<ForceDifferences> thesis_table_4_2(const std::string& scenario,
   for (std::size_t k = 0; k < 3; ++k) {
     published.rms[k] = found->second[k];
     published.maximum[k] = found->second[k + 3];
-    rms_printed[k] = !std::isnan(found->second[k]);
   }
   return published;
 }
@@ -142,24 +129,7 @@ std::vector<SpringForceRow> run_spring_forces(const std::vector<std::string>& co
   std::vector<PreparedRun> runs;
   for (const auto& config : configs) runs.push_back(prepare(config, units));
   std::vector<SpringForceRow> rows(configs.size());
-  std::vector<std::string> errors(configs.size());
-  std::atomic<std::size_t> next{0};
-  auto work = [&] {
-    for (std::size_t k = next++; k < configs.size(); k = next++) {
-      try {
-        rows[k] = integrate(runs[k], window);
-      } catch (const std::exception& error) {
-        errors[k] = error.what();
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < std::max(1, threads); ++t) pool.emplace_back(work);
-  work();
-  for (auto& thread : pool) thread.join();
-  for (std::size_t k = 0; k < configs.size(); ++k) {
-    if (!errors[k].empty()) throw std::runtime_error(configs[k] + ": " + errors[k]);
-  }
+  run_in_parallel(configs, threads, [&](std::size_t k) { rows[k] = integrate(runs[k], window); });
   return rows;
 }
 
@@ -177,8 +147,10 @@ std::string format_spring_force_table(const std::vector<SpringForceRow>& rows) {
     for (int kind = 0; kind < 2; ++kind) {
       for (std::size_t k = 0; k < 3; ++k) {
         const double value = kind == 0 ? row.simulated.rms[k] : row.simulated.maximum[k];
-        if (row.thesis && (kind == 1 || row.thesis_rms_printed[k])) {
-          const double published = kind == 0 ? row.thesis->rms[k] : row.thesis->maximum[k];
+        const double published = !row.thesis ? std::nan("")
+                                 : kind == 0 ? row.thesis->rms[k]
+                                             : row.thesis->maximum[k];
+        if (!std::isnan(published)) {
           std::snprintf(cell, sizeof cell, " %7.2f (%6.2f)", value, published);
         } else {
           std::snprintf(cell, sizeof cell, " %7.2f (   -  )", value);
@@ -192,23 +164,14 @@ std::string format_spring_force_table(const std::vector<SpringForceRow>& rows) {
 }
 
 void write_spring_force_table(const std::vector<SpringForceRow>& rows, const std::string& path) {
-  H5::Exception::dontPrint();
-  const auto parent = std::filesystem::path(path).parent_path();
-  if (!parent.empty()) std::filesystem::create_directories(parent);
-  H5::H5File file(path + ".partial", H5F_ACC_TRUNC);
-  const hsize_t count = rows.size();
-  H5::StrType text(H5::PredType::C_S1, H5T_VARIABLE);
-  std::vector<const char*> names;
-  for (const auto& row : rows) names.push_back(row.scenario.c_str());
-  file.createDataSet("scenario", text, H5::DataSpace(1, &count)).write(names.data(), text);
+  Hdf5Writer file(path);
+  std::vector<std::string> names;
+  for (const auto& row : rows) names.push_back(row.scenario);
+  file.write_strings("scenario", names);
   auto write = [&](const std::string& name, auto pick, const char* units) {
     std::vector<double> values;
     for (const auto& row : rows) values.push_back(pick(row));
-    H5::DataSet dataset =
-        file.createDataSet(name, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(1, &count));
-    dataset.write(values.data(), H5::PredType::NATIVE_DOUBLE);
-    H5::Attribute attribute = dataset.createAttribute("units", text, H5::DataSpace(H5S_SCALAR));
-    attribute.write(text, std::string(units));
+    file.write(name, values, units);
   };
   const char* sensors[] = {"input_force", "output_force", "inductance_force"};
   for (std::size_t k = 0; k < 3; ++k) {
@@ -220,10 +183,7 @@ void write_spring_force_table(const std::vector<SpringForceRow>& rows, const std
         [k](const SpringForceRow& r) { return r.simulated.maximum[k]; }, "%");
     write(
         std::string("thesis_rmsd_") + sensors[k],
-        [k](const SpringForceRow& r) {
-          return r.thesis && r.thesis_rms_printed[k] ? r.thesis->rms[k] : std::nan("");
-        },
-        "%");
+        [k](const SpringForceRow& r) { return r.thesis ? r.thesis->rms[k] : std::nan(""); }, "%");
     write(
         std::string("thesis_max_difference_") + sensors[k],
         [k](const SpringForceRow& r) { return r.thesis ? r.thesis->maximum[k] : std::nan(""); },
@@ -231,8 +191,7 @@ void write_spring_force_table(const std::vector<SpringForceRow>& rows, const std
   }
   write(
       "nominal_force", [](const SpringForceRow& r) { return r.nominal_force; }, "N");
-  file.close();
-  std::filesystem::rename(path + ".partial", path);
+  file.commit();
 }
 
 }  // namespace tcpmsim

@@ -24,9 +24,7 @@ void print_modes(const std::vector<std::string>& configs, std::ostream& out,
   char line[256];
   for (const auto& config : configs) {
     const Scenario scenario = load_scenario(config, {}, units);
-    for (const auto& component : scenario.system->components()) {
-      const auto* chain = dynamic_cast<const CoilSpringChain*>(component.get());
-      if (!chain) continue;
+    if (const auto* chain = scenario.system->find<const CoilSpringChain>()) {
       const auto& p = chain->parameters();
       if (!seen.insert({p.windings, p.mass, p.stiffness}).second) continue;
       std::snprintf(line, sizeof line, "\nSpring N = %d, m = %g g, k = %g N/m (from %s)\n",

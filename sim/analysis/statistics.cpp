@@ -33,6 +33,23 @@ double rmse(std::span<const double> a, std::span<const double> b) {
   return std::sqrt(sum / static_cast<double>(a.size()));
 }
 
+double root_mean_square(std::span<const double> values) {
+  if (values.empty()) throw std::invalid_argument("root mean square of no values");
+  double sum = 0.0;
+  for (double v : values) sum += v * v;
+  return std::sqrt(sum / static_cast<double>(values.size()));
+}
+
+double percentile(std::vector<double> values, double p) {
+  if (values.empty()) throw std::invalid_argument("percentile of no values");
+  if (!(p >= 0.0 && p <= 100.0)) throw std::invalid_argument("percentile outside [0, 100]");
+  std::sort(values.begin(), values.end());
+  const double position = (double(values.size()) - 1.0) * p / 100.0;
+  const auto below = static_cast<std::size_t>(std::floor(position));
+  if (below + 1 >= values.size()) return values.back();
+  return values[below] + (position - double(below)) * (values[below + 1] - values[below]);
+}
+
 double r_squared(std::span<const double> measured, std::span<const double> predicted) {
   if (measured.size() != predicted.size() || measured.size() < 2) {
     throw std::invalid_argument("R^2 of unequal series");

@@ -12,7 +12,12 @@ double standard_deviation(std::span<const double> values);
 double value_range(std::span<const double> values);
 // Root mean square of a - b.
 double rmse(std::span<const double> a, std::span<const double> b);
-// (2.15) R^2 = 1 - sum (y - f)^2 / sum (y - mean y)^2 (negative when f is worse than the mean).
+double root_mean_square(std::span<const double> values);
+// The p-th percentile (0 <= p <= 100) by linear interpolation between order statistics (NumPy's
+// default).
+double percentile(std::vector<double> values, double p);
+// (2.15), (7.15) R^2 = 1 - sum (y - f)^2 / sum (y - mean y)^2 (negative when f is worse than the
+// mean).
 double r_squared(std::span<const double> measured, std::span<const double> predicted);
 
 // Piecewise-linear interpolation in the table (x_i, y_i), x strictly monotonic (increasing or

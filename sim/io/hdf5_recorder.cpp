@@ -6,6 +6,7 @@
 #include <map>
 
 #include "controllers/signals/signal.h"
+#include "sim/io/hdf5_files.h"
 #include "tcpmsim/version.h"
 
 namespace tcpmsim {
@@ -17,13 +18,6 @@ struct Hdf5Recorder::File {
 };
 
 namespace {
-
-void write_text(H5::H5Object& object, const std::string& name, const std::string& value) {
-  H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
-  type.setCset(H5T_CSET_UTF8);
-  H5::Attribute attribute = object.createAttribute(name, type, H5::DataSpace(H5S_SCALAR));
-  attribute.write(type, value);
-}
 
 template <typename T>
 void write_scalar(H5::H5Object& object, const std::string& name, const H5::PredType& type,
@@ -41,7 +35,7 @@ H5::DataSet create_series(H5::Group& parent, const std::string& name, const std:
   properties.setShuffle();
   properties.setDeflate(1);
   H5::DataSet dataset = parent.createDataSet(name, H5::PredType::NATIVE_DOUBLE, space, properties);
-  write_text(dataset, "units", units);
+  write_text_attribute(dataset, "units", units);
   return dataset;
 }
 
@@ -53,7 +47,7 @@ void write_array(H5::Group& parent, const std::string& name, const std::vector<d
 }
 
 void write_description(H5::Group& group, const SignalDescription& description) {
-  write_text(group, "type", description.type);
+  write_text_attribute(group, "type", description.type);
   for (const auto& [name, value] : description.parameters) {
     write_scalar(group, name, H5::PredType::NATIVE_DOUBLE, value);
   }
@@ -87,10 +81,6 @@ void write_statistics(H5::H5Object& root, const SolverStatistics& statistics) {
 
 }  // namespace
 
-std::string Hdf5Recorder::partial_path(const std::string& path) {
-  return path + ".partial";
-}
-
 std::string Hdf5Recorder::failed_path(const std::string& path) {
   std::filesystem::path failed(path);
   const std::string extension = failed.extension().string();
@@ -102,16 +92,17 @@ Hdf5Recorder::Hdf5Recorder(std::string path, const System& system, const RecordM
                            std::size_t chunk_samples)
     : path_(std::move(path)), file_(std::make_unique<File>()), chunk_samples_(chunk_samples) {
   H5::Exception::dontPrint();
+  create_parent_directories(path_);
   file_->file = H5::H5File(partial_path(path_), H5F_ACC_TRUNC);
   H5::Group root = file_->file.openGroup("/");
-  write_text(root, "tcpmsim_version", kVersion);
-  write_text(root, "git_commit", kGitCommit);
-  write_text(root, "scenario", metadata.scenario_name);
-  write_text(root, "config_file", metadata.config_file);
-  write_text(root, "config", metadata.resolved_config);
+  write_text_attribute(root, "tcpmsim_version", kVersion);
+  write_text_attribute(root, "git_commit", kGitCommit);
+  write_text_attribute(root, "scenario", metadata.scenario_name);
+  write_text_attribute(root, "config_file", metadata.config_file);
+  write_text_attribute(root, "config", metadata.resolved_config);
   write_scalar(root, "seed", H5::PredType::NATIVE_UINT64, metadata.seed);
   write_scalar(root, "rtol", H5::PredType::NATIVE_DOUBLE, metadata.relative_tolerance);
-  write_text(root, "linear_solver", metadata.linear_solver);
+  write_text_attribute(root, "linear_solver", metadata.linear_solver);
   write_scalar(root, "output_interval", H5::PredType::NATIVE_DOUBLE, metadata.output_interval);
   write_scalar(root, "duration", H5::PredType::NATIVE_DOUBLE, metadata.duration);
 
@@ -132,7 +123,7 @@ Hdf5Recorder::Hdf5Recorder(std::string path, const System& system, const RecordM
     for (const auto& record : component->signal_records()) {
       const std::string name = component->group() + "." + record.name;
       H5::Group group = inputs.createGroup(name);
-      write_text(group, "units", record.unit);
+      write_text_attribute(group, "units", record.unit);
       write_description(group, record.signal->describe());
     }
   }
@@ -177,8 +168,8 @@ void Hdf5Recorder::close_with(const std::string& status, const std::string& reas
                               const SolverStatistics& statistics) {
   flush();
   H5::Group root = file_->file.openGroup("/");
-  write_text(root, "status", status);
-  if (!reason.empty()) write_text(root, "failure", reason);
+  write_text_attribute(root, "status", status);
+  if (!reason.empty()) write_text_attribute(root, "failure", reason);
   write_statistics(root, statistics);
   root.close();
   file_.reset();

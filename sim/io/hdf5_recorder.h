@@ -43,7 +43,6 @@ class Hdf5Recorder final : public OutputSink {
   // Keeps what was written as the failed file; returns its path.
   std::string fail(const std::string& reason, const SolverStatistics& statistics);
 
-  static std::string partial_path(const std::string& path);
   static std::string failed_path(const std::string& path);
 
  private:

@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "sim/io/hdf5_files.h"
+
 namespace tcpmsim {
 
 struct Hdf5Writer::File {
@@ -12,10 +14,6 @@ struct Hdf5Writer::File {
 };
 
 namespace {
-
-std::string partial(const std::string& path) {
-  return path + ".partial";
-}
 
 // Runs an HDF5 action, turning the library's exceptions (not std::exceptions) into one.
 template <typename Action>
@@ -26,13 +24,6 @@ void guarded(const std::string& path, Action&& action) {
     throw std::runtime_error("cannot write " + path + ": HDF5 " + error.getFuncName() + ": " +
                              error.getDetailMsg());
   }
-}
-
-void write_text(H5::H5Object& object, const std::string& name, const std::string& value) {
-  H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
-  type.setCset(H5T_CSET_UTF8);
-  H5::Attribute attribute = object.createAttribute(name, type, H5::DataSpace(H5S_SCALAR));
-  attribute.write(type, value);
 }
 
 // Opens or creates every group on the way to `dataset` and returns the parent group.
@@ -64,7 +55,8 @@ std::string leaf(const std::string& dataset) {
 
 Hdf5Writer::Hdf5Writer(std::string path) : path_(std::move(path)), file_(std::make_unique<File>()) {
   H5::Exception::dontPrint();
-  guarded(path_, [&] { file_->file = H5::H5File(partial(path_), H5F_ACC_TRUNC); });
+  create_parent_directories(path_);
+  guarded(path_, [&] { file_->file = H5::H5File(partial_path(path_), H5F_ACC_TRUNC); });
 }
 
 Hdf5Writer::~Hdf5Writer() {
@@ -74,7 +66,7 @@ Hdf5Writer::~Hdf5Writer() {
   } catch (...) {
   }
   std::error_code ignored;
-  std::filesystem::remove(partial(path_), ignored);
+  std::filesystem::remove(partial_path(path_), ignored);
 }
 
 void Hdf5Writer::write(const std::string& dataset, std::span<const double> values,
@@ -93,7 +85,7 @@ void Hdf5Writer::write_matrix(const std::string& dataset, std::span<const double
     H5::DataSpace space(columns == 1 ? 1 : 2, dimensions);
     H5::DataSet set = group.createDataSet(leaf(dataset), H5::PredType::NATIVE_DOUBLE, space);
     if (!row_major.empty()) set.write(row_major.data(), H5::PredType::NATIVE_DOUBLE);
-    write_text(set, "units", units);
+    write_text_attribute(set, "units", units);
   });
 }
 
@@ -103,7 +95,7 @@ void Hdf5Writer::write_scalar(const std::string& dataset, double value, const st
     H5::DataSet set =
         group.createDataSet(leaf(dataset), H5::PredType::NATIVE_DOUBLE, H5::DataSpace(H5S_SCALAR));
     set.write(&value, H5::PredType::NATIVE_DOUBLE);
-    write_text(set, "units", units);
+    write_text_attribute(set, "units", units);
   });
 }
 
@@ -125,13 +117,13 @@ void Hdf5Writer::attribute(const std::string& object, const std::string& name,
   guarded(path_, [&] {
     if (object == "/") {
       H5::Group root = file_->file.openGroup("/");
-      write_text(root, name, value);
+      write_text_attribute(root, name, value);
     } else if (file_->file.childObjType(object) == H5O_TYPE_GROUP) {
       H5::Group group = file_->file.openGroup(object);
-      write_text(group, name, value);
+      write_text_attribute(group, name, value);
     } else {
       H5::DataSet set = file_->file.openDataSet(object);
-      write_text(set, name, value);
+      write_text_attribute(set, name, value);
     }
   });
 }
@@ -139,7 +131,7 @@ void Hdf5Writer::attribute(const std::string& object, const std::string& name,
 void Hdf5Writer::commit() {
   guarded(path_, [&] { file_->file.close(); });
   std::error_code error;
-  std::filesystem::rename(partial(path_), path_, error);
+  std::filesystem::rename(partial_path(path_), path_, error);
   if (error) throw std::runtime_error("cannot write " + path_ + ": " + error.message());
   committed_ = true;
 }

@@ -62,6 +62,17 @@ expect 0 "control-tasks writes its report" -- "$tcpmsim" control-tasks "$tasks/f
   --no-calibration --set "scenario.duration=60 s" -o "$work/tasks.h5"
 contains "$work/out" "thesis 2.1-5.1 s" "control-tasks prints the thesis' values beside ours"
 [[ -s $work/tasks.h5 ]] && echo "ok: control-task file written" || { echo "FAIL: no tasks.h5"; failures=$((failures + 1)); }
+mkdir "$work/taken.h5"
+expect 4 "a control-task output the file system refuses is an output error" -- "$tcpmsim" control-tasks \
+  "$tasks/force_steps.yaml" --no-calibration --set "scenario.duration=60 s" -o "$work/taken.h5"
+contains "$work/err" "cannot write $work/taken.h5" "the output error names the file"
+expect 4 "two results under one name are an output error, not a crash" -- "$tcpmsim" control-tasks \
+  "$tasks/force_steps.yaml" "$tasks/force_steps.yaml" --no-calibration --set "scenario.duration=60 s" \
+  -o "$work/twice.h5"
+[[ ! -e $work/twice.h5 && ! -e $work/twice.h5.partial ]] && echo "ok: no file after the output error" \
+  || { echo "FAIL: twice.h5 left behind"; ls "$work"; failures=$((failures + 1)); }
+expect 4 "a spring-force output the file system refuses is an output error" -- "$tcpmsim" spring-forces \
+  "$source_dir/configs/ch4/st_heel_strike.yaml" -o "$work/taken.h5" --quiet
 expect 2 "spring-forces with a missing file is a usage error" -- "$tcpmsim" spring-forces "$work/none.yaml"
 expect 2 "coil-fit with a missing data directory is a usage error" -- "$tcpmsim" coil-fit \
   "$source_dir/configs/springs/s1.yaml" --data "$work/none"

@@ -1,5 +1,7 @@
 #include "tests/support/test_support.h"
 
+#include "sim/run.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -31,11 +33,8 @@ Scenario scenario_from_text(const std::string& yaml, const std::vector<std::stri
 
 Trace simulate(Scenario& scenario) {
   MemorySink sink(*scenario.system);
-  Integrator integrator(*scenario.system, scenario.solver);
   Trace trace;
-  trace.statistics =
-      integrator.run(0.0, scenario.settings.duration,
-                     {scenario.settings.output_interval, scenario.settings.output_start}, sink);
+  trace.statistics = integrate(scenario, sink);
   trace.time = std::move(sink.time);
   trace.channels = std::move(sink.channels);
   return trace;

@@ -1,0 +1,27 @@
+#include "sim/io/hdf5_files.h"
+
+#include <filesystem>
+#include <stdexcept>
+
+namespace tcpmsim {
+
+std::string partial_path(const std::string& path) {
+  return path + ".partial";
+}
+
+void create_parent_directories(const std::string& path) {
+  const auto parent = std::filesystem::path(path).parent_path();
+  if (parent.empty()) return;
+  std::error_code error;
+  std::filesystem::create_directories(parent, error);
+  if (error) throw std::runtime_error("cannot write " + path + ": " + error.message());
+}
+
+void write_text_attribute(H5::H5Object& object, const std::string& name, const std::string& value) {
+  H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
+  type.setCset(H5T_CSET_UTF8);
+  H5::Attribute attribute = object.createAttribute(name, type, H5::DataSpace(H5S_SCALAR));
+  attribute.write(type, value);
+}
+
+}  // namespace tcpmsim

@@ -1,0 +1,20 @@
+#pragma once
+
+#include <H5Cpp.h>
+
+#include <string>
+
+// What the HDF5 record and the analysis writers share about files: where a file lives until it
+// is complete, its directories, and text attributes.
+namespace tcpmsim {
+
+// "<path>.partial": the name a file is written under, renamed to `path` only when complete.
+std::string partial_path(const std::string& path);
+
+// Creates the directories above `path`; a failure is a std::runtime_error naming `path`.
+void create_parent_directories(const std::string& path);
+
+// A scalar UTF-8 text attribute.
+void write_text_attribute(H5::H5Object& object, const std::string& name, const std::string& value);
+
+}  // namespace tcpmsim
