@@ -60,15 +60,13 @@ class DiscreteSls {
     return value_ = decay_ * value_ + deflection_gain_ * deflection + velocity_gain_ * velocity;
   }
   double value() const { return value_; }
-  double decay() const { return decay_; }                      // phi
-  double deflection_gain() const { return deflection_gain_; }  // (1 - phi) k1 [N/m]
-  double velocity_gain() const { return velocity_gain_; }      // phi k1 T + (1 - phi) c [N s/m]
+  double decay() const { return decay_; }  // phi
 
  private:
   double k1_;
   double decay_;
-  double deflection_gain_;
-  double velocity_gain_;
+  double deflection_gain_;  // (1 - phi) k1 [N/m]
+  double velocity_gain_;    // phi k1 T + (1 - phi) c [N s/m]
   double value_ = 0.0;
 };
 

@@ -209,7 +209,7 @@ std::unique_ptr<Signal> read_step_sequence(const ConfigNode& node, std::string_v
   StepSequenceSettings settings;
   std::tie(settings.low, settings.high) = node.interval("range", unit);
   settings.steps =
-      static_cast<int>(node.integer_or("steps", settings.steps, ValueCheck::at_least(1)));
+      static_cast<int>(node.integer_or("steps", settings.steps, ValueCheck::at_least(2)));
   settings.hold = node.quantity_or("hold", "s", settings.hold, ValueCheck::positive());
   settings.start_time = node.quantity_or("start_time", "s", 0.0, ValueCheck::non_negative());
   if (auto initial = node.find("initial")) settings.initial = initial->as_quantity(unit);

@@ -13,15 +13,11 @@ double maxwell_ring_stack(double radius, double self_distance, int rings, double
 }
 
 double maxwell_inductance(const CoilGeometry& coil) {
+  // (2.13): mutual terms over round(N) rings, the self term with the non-integer N.
   const int rings = static_cast<int>(std::lround(coil.turns));
-  const double pitch = coil.pitch();
-  double mutual = 0.0;
-  for (int i = 1; i < rings; ++i) {
-    mutual += (rings - i) * loop_mutual_inductance(coil.radius, i * pitch);
-  }
-  // (2.13): self term with the non-integer N, mutual terms over round(N) rings.
-  return coil.turns * loop_mutual_inductance(coil.radius, wire_gmd(coil.wire_diameter)) +
-         2.0 * mutual;
+  const double self_distance = wire_gmd(coil.wire_diameter);
+  return maxwell_ring_stack(coil.radius, self_distance, rings, coil.pitch()) +
+         (coil.turns - rings) * loop_mutual_inductance(coil.radius, self_distance);
 }
 
 double maxwell_positions(double radius, double self_distance, std::span<const double> positions) {

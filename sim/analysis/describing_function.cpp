@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <unsupported/Eigen/MatrixFunctions>
 
+#include "controllers/self_sensing_estimator.h"
+
 namespace tcpmsim {
 
 namespace {
@@ -284,8 +286,8 @@ SampledLoop force_control_loop(const PidGains& gains, double heating_gain, doubl
                                double period) {
   if (!(cooling_rate > 0.0)) throw std::invalid_argument("force loop: kappa_c must be positive");
   // The estimator's (7.1): F_T[k] = phi F_T[k-1] + gamma P[k-1].
-  const double phi = std::exp(-cooling_rate * period);
-  const double gamma = -heating_gain / cooling_rate * std::expm1(-cooling_rate * period);
+  const DiscreteThermalForce thermal(heating_gain, cooling_rate, period);
+  const double phi = thermal.decay(), gamma = thermal.gain();
   return {gains, period, [phi, gamma, period](double omega) {
             return gamma / (std::polar(1.0, omega * period) - phi);
           }};
@@ -334,20 +336,6 @@ SampledLoop deflection_control_loop(const PidGains& gains, double heating_gain, 
 double equilibrium_power(double force, double deflection, double heating_gain, double cooling_rate,
                          const SlsParameters& mechanics) {
   return cooling_rate / heating_gain * (force - mechanics.k1 * deflection - mechanics.force_offset);
-}
-
-const char* to_string(LoopVerdict verdict) {
-  switch (verdict) {
-    case LoopVerdict::stable:
-      return "stable";
-    case LoopVerdict::limit_cycle:
-      return "limit cycle";
-    case LoopVerdict::latch_up:
-      return "latch-up";
-    case LoopVerdict::saturated:
-      return "saturated";
-  }
-  return "unknown";
 }
 
 std::optional<LimitCycle> LimitCyclePrediction::oscillation() const {

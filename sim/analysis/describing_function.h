@@ -153,8 +153,6 @@ enum class LoopVerdict {
   saturated,    // the operating power lies outside the limits: the loop rests at a limit
 };
 
-const char* to_string(LoopVerdict verdict);
-
 // A harmonic-balance solution. Accuracy: at the Nyquist frequency the balance is exact (a
 // period-2 sequence has no other harmonics). Elsewhere the describing function neglects the
 // harmonics the saturation makes; they matter as much as the linear part lets them through,

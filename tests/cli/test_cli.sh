@@ -57,6 +57,9 @@ expect 2 "control-tasks without a scenario is a usage error" -- "$tcpmsim" contr
 expect 3 "a bad --set on control-tasks is a configuration error" -- "$tcpmsim" control-tasks \
   "$tasks/force_steps.yaml" --set "controller.gains.proportional=540 W" -o "$work/tasks.h5"
 contains "$work/err" "error: controller.gains.proportional:" "control-tasks names the key"
+expect 3 "a one-step sequence is a configuration error, not an exception" -- "$tcpmsim" control-tasks \
+  "$tasks/force_steps.yaml" --set "controller.reference.steps=1" -o "$work/tasks.h5"
+contains "$work/err" "error: controller.reference.steps:" "the step count's key is named"
 [[ ! -e $work/tasks.h5 ]] && echo "ok: no control-task file after the error" || { echo "FAIL: tasks.h5 written"; failures=$((failures + 1)); }
 expect 0 "control-tasks writes its report" -- "$tcpmsim" control-tasks "$tasks/force_steps.yaml" \
   --no-calibration --set "scenario.duration=60 s" -o "$work/tasks.h5"
