@@ -42,6 +42,20 @@ bool matches_printed(double value, double printed, double unit) {
   return std::abs(value - printed) <= 0.5 * unit + 1e-9;
 }
 
+// Every sequence's R^2 (Table 2.2) and RMSE (Table 2.3) of model `key` against the thesis'
+// `column`, to the printed digits.
+void check_printed_column(const std::string& key, int column) {
+  for (const auto& a : results()) {
+    const auto row = thesis_row(a.sequence);
+    const auto& m = model(a, key);
+    INFO(a.sequence << " " << key << ": R^2 " << m.r_squared << " against "
+                    << row->r_squared[column] << ", RMSE " << 100.0 * m.rmse_fraction
+                    << " % against " << row->rmse_percent[column] << " %");
+    CHECK(matches_printed(m.r_squared, row->r_squared[column], 1e-3));
+    CHECK(matches_printed(100.0 * m.rmse_fraction, row->rmse_percent[column], 0.1));
+  }
+}
+
 }  // namespace
 
 TEST_CASE("The analysis covers the thesis' eight sequences with ten kept steps each") {
@@ -76,41 +90,19 @@ TEST_CASE("S1's second to fifth sequences reuse the fit of the first") {
 }
 
 TEST_CASE("Basic, Nagaoka and Maxwell reproduce Tables 2.2 and 2.3 to the printed digits") {
-  const std::vector<std::pair<std::string, int>> columns{
-      {"basic", kBasic}, {"nagaoka", kNagaoka}, {"maxwell", kMaxwell}};
-  for (const auto& a : results()) {
-    const auto row = thesis_row(a.sequence);
-    for (const auto& [key, column] : columns) {
-      const auto& m = model(a, key);
-      INFO(a.sequence << " " << key << ": R^2 " << m.r_squared << " against "
-                      << row->r_squared[column] << ", RMSE " << 100.0 * m.rmse_fraction
-                      << " % against " << row->rmse_percent[column] << " %");
-      CHECK(matches_printed(m.r_squared, row->r_squared[column], 1e-3));
-      CHECK(matches_printed(100.0 * m.rmse_fraction, row->rmse_percent[column], 0.1));
-    }
-  }
+  check_printed_column("basic", kBasic);
+  check_printed_column("nagaoka", kNagaoka);
+  check_printed_column("maxwell", kMaxwell);
 }
 
 TEST_CASE("Weaver's helix integral reproduces the Neumann (Helix) columns to the printed digits") {
-  for (const auto& a : results()) {
-    const auto row = thesis_row(a.sequence);
-    const auto& m = model(a, "neumann_helix");
-    INFO(a.sequence << ": R^2 " << m.r_squared << ", RMSE " << 100.0 * m.rmse_fraction << " %");
-    CHECK(matches_printed(m.r_squared, row->r_squared[kHelix], 1e-3));
-    CHECK(matches_printed(100.0 * m.rmse_fraction, row->rmse_percent[kHelix], 0.1));
-  }
+  check_printed_column("neumann_helix", kHelix);
 }
 
 TEST_CASE("The published Rosa column is Rosa with an un-iterated AGM for Nagaoka's K and E") {
   // The published code's defect (sim/analysis/published_rosa.h) reproduces every Rosa value of
   // both tables; the correct Rosa does not (README, coil-spring section).
-  for (const auto& a : results()) {
-    const auto row = thesis_row(a.sequence);
-    const auto& m = model(a, "rosa_published");
-    INFO(a.sequence << ": R^2 " << m.r_squared << ", RMSE " << 100.0 * m.rmse_fraction << " %");
-    CHECK(matches_printed(m.r_squared, row->r_squared[kRosa], 1e-3));
-    CHECK(matches_printed(100.0 * m.rmse_fraction, row->rmse_percent[kRosa], 0.1));
-  }
+  check_printed_column("rosa_published", kRosa);
 }
 
 TEST_CASE("Inductance follows deflection far more strongly and cleanly than resistance (ch. 3)") {

@@ -7,6 +7,8 @@
 #include <numbers>
 
 #include "models/coil_spring_chain.h"
+#include "models/inductance/loop_mutual.h"
+#include "models/inductance/maxwell.h"
 #include "sim/analysis/spring_forces.h"
 #include "sim/analysis/spring_modes.h"
 #include "tests/support/test_support.h"
@@ -68,7 +70,10 @@ TEST_CASE(
   const Trace trace = simulate(spring_yaml());
   CHECK(trace["spring/inductance_force"].front() ==
         Approx(trace["spring/deflection_force"].front()).epsilon(1e-9));
-  CHECK(trace["spring/inductance"].front() > 1e-6);  // microhenries, as Table 2.1's springs
+  // At the preload the 52 windings are evenly spaced over 230 mm: Maxwell's ring stack (2.13).
+  CHECK(trace["spring/inductance"].front() ==
+        Approx(inductance::maxwell_ring_stack(8e-3, inductance::wire_gmd(2e-3), 52, 0.230 / 52))
+            .epsilon(1e-11));
 }
 
 TEST_CASE("Clamped eigenfrequencies approach n pi sqrt(k/m) within the lumping's dispersion") {

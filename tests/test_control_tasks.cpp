@@ -85,7 +85,9 @@ TEST_CASE("Force control at Table 7.2 reaches the published bandwidth, set by th
   REQUIRE(results[0].bandwidth.has_value());
   // Thesis 7.4: 0.056 Hz. With Kp = 540 W/N the drive saturates on every cycle, so the
   // bandwidth is the power range's, which our plant (Table 7.2 itself) shares with the thesis'.
-  CHECK(*results[0].bandwidth == Approx(0.056).epsilon(0.10));
+  // The thesis prints two digits (+-0.9 %) and the sweep interpolates within 0.7 %
+  // (test_control_analysis); the rest is its real muscle against the Table 7.2 model.
+  CHECK(*results[0].bandwidth == Approx(0.056).epsilon(0.03));
 }
 
 TEST_CASE("A plant that heats harder than the estimator's model biases only the force estimate") {
@@ -178,13 +180,15 @@ TEST_CASE("Deflection steps beyond what the power limits hold at 0.40 N are neve
   int unreachable = 0;
   for (const auto& rise : results[0].rises) {
     const double level = rise.start + 0.9 * (rise.target - rise.start);
+    INFO("step at " << rise.step_time << " s to " << rise.target);
     if (level < x_low || level > x_high) {
       ++unreachable;
-      INFO("step at " << rise.step_time << " s to " << rise.target);
       CHECK_FALSE(rise.reached);
+    } else {
+      CHECK(rise.reached);
     }
   }
-  CHECK(unreachable >= 2);  // the steps to 10 and 30 mm
+  CHECK(unreachable == 2);  // the steps to 10 and 30 mm
 }
 
 TEST_CASE("The thesis' force gains are predicted stable and settle in simulation") {

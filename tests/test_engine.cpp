@@ -149,8 +149,11 @@ TEST_CASE("Dense, band and KLU linear solvers give the same trajectory") {
     return simulate(scenario);
   };
   const Trace dense = run("dense"), band = run("band"), klu = run("klu");
-  CHECK(max_abs_difference(dense["muscle/force"], band["muscle/force"]) < 1e-6);
-  CHECK(max_abs_difference(dense["muscle/force"], klu["muscle/force"]) < 1e-6);
+  // The linear solver changes only the Newton iterations' rounding: agreement well within the
+  // integration error, 50 rtol times the force scale (0.5 N).
+  const double allowed = 50 * 1e-8 * 0.5;
+  CHECK(max_abs_difference(dense["muscle/force"], band["muscle/force"]) < allowed);
+  CHECK(max_abs_difference(dense["muscle/force"], klu["muscle/force"]) < allowed);
   CHECK(klu.statistics.jacobian_evaluations > 0);
 }
 

@@ -107,6 +107,10 @@ TEST_CASE("The median filter removes single spikes, and bursts up to half its wi
   for (int k = 0; k < 40; ++k)
     last = burst.process(k >= 20 ? level + 0.1e-6 : level, 1.0).raw_deflection;
   CHECK(last < 19e-3);
+  // And then it is the burst's level, inverted by (7.3): x = lambda_l / (L* - lambda_0) - lambda_x.
+  const auto& law = p.inductance;
+  CHECK(last ==
+        Approx(law.lambda_l / (level + 0.1e-6 - law.lambda_0) - law.lambda_x).epsilon(1e-12));
 }
 
 TEST_CASE("The deflection estimate inverts (7.3) exactly on noise-free input") {

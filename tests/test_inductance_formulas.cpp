@@ -167,8 +167,12 @@ TEST_CASE("Maxwell's ring sum approaches Rosa's corrected Nagaoka as pitch/radiu
         const CoilGeometry coil{r, n * delta * pitch_over_wire, static_cast<double>(n), delta};
         const double p_over_r = coil.pitch() / r;
         INFO("N = " << n << ", r = " << r << ", p/delta = " << pitch_over_wire);
-        CHECK(relative(rosa_inductance(coil, RosaMutualCorrection::series),
-                       maxwell_inductance(coil)) <= p_over_r * p_over_r);
+        const double rosa = rosa_inductance(coil, RosaMutualCorrection::series);
+        CHECK(relative(rosa, maxwell_inductance(coil)) <= p_over_r * p_over_r);
+        // The bound is loose where p/r is large; the correction must still move Nagaoka's
+        // current sheet towards the ring sum.
+        CHECK(relative(rosa, maxwell_inductance(coil)) <
+              relative(nagaoka_inductance(coil), maxwell_inductance(coil)));
       }
     }
   }
