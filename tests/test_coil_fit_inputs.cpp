@@ -14,6 +14,7 @@
 
 using namespace tcpmsim;
 using namespace tcpmsim::analysis;
+using tcpmsim::testing::replaced;
 
 namespace {
 
@@ -35,12 +36,6 @@ std::string error_of(const std::string& text) {
   }
   FAIL("no DataFileError was thrown");
   return {};
-}
-
-std::string replaced(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  REQUIRE(at != std::string::npos);
-  return text.replace(at, from.size(), to);
 }
 
 }  // namespace

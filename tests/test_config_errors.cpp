@@ -28,12 +28,6 @@ drive: {mode: power, power: 0 W}
 load: {type: deflection, deflection: 20 mm}
 )";
 
-std::string replace(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  REQUIRE(at != std::string::npos);
-  return text.replace(at, from.size(), to);
-}
-
 std::string error_of(const std::string& yaml, const std::vector<std::string>& overrides = {}) {
   try {
     scenario_from_text(yaml, overrides);
@@ -50,13 +44,13 @@ TEST_CASE("The reference configuration of these tests is valid") {
 }
 
 TEST_CASE("A misspelt required key is reported as unknown, with the key it should be") {
-  CHECK(error_of(replace(kValid, "    conductance:", "    conductanse:")) ==
+  CHECK(error_of(replaced(kValid, "    conductance:", "    conductanse:")) ==
         "test.yaml:7:5: error: muscle.thermal.conductanse: unknown key 'conductanse' (did you mean "
         "'conductance'?)");
 }
 
 TEST_CASE("A misspelt optional key is reported as unknown, with a suggestion") {
-  CHECK(error_of(replace(
+  CHECK(error_of(replaced(
             kValid, "    conductance: 0.05 W/K\n",
             "    conductance: 0.05 W/K\n    radation: {emissivity: 0.9, area: 1 cm^2}\n")) ==
         "test.yaml:8:5: error: muscle.thermal.radation: unknown key 'radation' (did you mean "
@@ -64,52 +58,53 @@ TEST_CASE("A misspelt optional key is reported as unknown, with a suggestion") {
 }
 
 TEST_CASE("An unknown key far from every known one lists the known keys") {
-  CHECK(error_of(replace(kValid, "output: {rate: 10 Hz}", "output: {rate: 10 Hz, colour: blue}")) ==
-        "test.yaml:2:23: error: output.colour: unknown key 'colour'; known keys here: rate, start");
+  CHECK(
+      error_of(replaced(kValid, "output: {rate: 10 Hz}", "output: {rate: 10 Hz, colour: blue}")) ==
+      "test.yaml:2:23: error: output.colour: unknown key 'colour'; known keys here: rate, start");
 }
 
 TEST_CASE("A missing key names the section that needs it") {
-  CHECK(error_of(replace(kValid, "    k1: 10 N/m\n", "")) ==
+  CHECK(error_of(replaced(kValid, "    k1: 10 N/m\n", "")) ==
         "test.yaml:11:5: error: muscle.mechanics: missing required key 'k1'");
 }
 
 TEST_CASE("A value of the wrong type says what was expected") {
-  CHECK(error_of(replace(kValid, "k1: 10 N/m", "k1: [10 N/m, 11 N/m]")) ==
+  CHECK(error_of(replaced(kValid, "k1: 10 N/m", "k1: [10 N/m, 11 N/m]")) ==
         "test.yaml:11:9: error: muscle.mechanics.k1: expected a quantity in N/m, got a sequence");
-  CHECK(error_of(replace(kValid, "k1: 10 N/m", "k1: stiff")) ==
+  CHECK(error_of(replaced(kValid, "k1: 10 N/m", "k1: stiff")) ==
         "test.yaml:11:9: error: muscle.mechanics.k1: expected a quantity in N/m such as '1.5 N/m', "
         "got 'stiff'");
 }
 
 TEST_CASE("A quantity in the wrong unit is rejected with both units") {
-  CHECK(error_of(replace(kValid, "k1: 10 N/m", "k1: 10 N")) ==
+  CHECK(error_of(replaced(kValid, "k1: 10 N/m", "k1: 10 N")) ==
         "test.yaml:11:9: error: muscle.mechanics.k1: wrong unit in '10 N': unit 'N' cannot be "
         "converted to 'N/m'");
-  CHECK(error_of(replace(kValid, "k1: 10 N/m", "k1: 10 blorps")) ==
+  CHECK(error_of(replaced(kValid, "k1: 10 N/m", "k1: 10 blorps")) ==
         "test.yaml:11:9: error: muscle.mechanics.k1: wrong unit in '10 blorps': 'blorps' is not a "
         "unit");
 }
 
 TEST_CASE("A dimensional quantity without a unit is rejected") {
-  CHECK(error_of(replace(kValid, "heat_capacity: 0.5 J/K", "heat_capacity: 0.5")) ==
+  CHECK(error_of(replaced(kValid, "heat_capacity: 0.5 J/K", "heat_capacity: 0.5")) ==
         "test.yaml:6:20: error: muscle.thermal.heat_capacity: '0.5' has no unit; expected a "
         "quantity in J/K "
         "(or a unit convertible to it), e.g. '0.5 J/K'");
 }
 
 TEST_CASE("Non-physical values are rejected") {
-  CHECK(error_of(replace(kValid, "heat_capacity: 0.5 J/K", "heat_capacity: -0.5 J/K")) ==
+  CHECK(error_of(replaced(kValid, "heat_capacity: 0.5 J/K", "heat_capacity: -0.5 J/K")) ==
         "test.yaml:6:20: error: muscle.thermal.heat_capacity: expected a positive value in J/K, "
         "got '-0.5 J/K'");
-  CHECK(error_of(replace(kValid, "resistance: 10 ohm", "resistance: 0 ohm")) ==
+  CHECK(error_of(replaced(kValid, "resistance: 10 ohm", "resistance: 0 ohm")) ==
         "test.yaml:15:15: error: muscle.resistance: expected a positive value in ohm, got '0 ohm'");
-  CHECK(error_of(replace(kValid, "rtol: 1.0e-6", "rtol: 0")) ==
+  CHECK(error_of(replaced(kValid, "rtol: 1.0e-6", "rtol: 0")) ==
         "test.yaml:3:16: error: solver.rtol: expected a value in [1e-14, 0.1], got '0'");
-  CHECK(
-      error_of(replace(kValid, "ambient_temperature: 20 degC", "ambient_temperature: -300 degC")) ==
-      "test.yaml:8:26: error: muscle.thermal.ambient_temperature: the ambient temperature must "
-      "stay above 0 K");
-  CHECK(error_of(replace(
+  CHECK(error_of(
+            replaced(kValid, "ambient_temperature: 20 degC", "ambient_temperature: -300 degC")) ==
+        "test.yaml:8:26: error: muscle.thermal.ambient_temperature: the ambient temperature must "
+        "stay above 0 K");
+  CHECK(error_of(replaced(
             kValid, "drive: {mode: power, power: 0 W}",
             "drive: {mode: duty, supply_voltage: 7 V, series_resistance: 0.57 ohm, duty: 1.2}")) ==
         "test.yaml:17:77: error: drive.duty: the duty cycle reaches 1.200000; it must stay in [0, "
@@ -117,18 +112,18 @@ TEST_CASE("Non-physical values are rejected") {
 }
 
 TEST_CASE("A choice outside its options suggests the nearest one") {
-  CHECK(error_of(replace(kValid, "linear_solver: dense", "linear_solver: dens")) ==
+  CHECK(error_of(replaced(kValid, "linear_solver: dense", "linear_solver: dens")) ==
         "test.yaml:3:39: error: solver.linear_solver: expected one of dense, band, klu, got 'dens' "
         "(did you mean 'dense'?)");
 }
 
 TEST_CASE("Broken YAML is reported at its position") {
-  CHECK(error_of(replace(kValid, "output: {rate: 10 Hz}", "output: {rate: 10 Hz")) ==
+  CHECK(error_of(replaced(kValid, "output: {rate: 10 Hz}", "output: {rate: 10 Hz")) ==
         "test.yaml:3:7: error: invalid YAML: end of map flow not found");
 }
 
 TEST_CASE("A duplicated key is an error, not a silent overwrite") {
-  CHECK(error_of(replace(kValid, "    k2: 2.5 N/m\n", "    k2: 2.5 N/m\n    k2: 3 N/m\n")) ==
+  CHECK(error_of(replaced(kValid, "    k2: 2.5 N/m\n", "    k2: 2.5 N/m\n    k2: 3 N/m\n")) ==
         "test.yaml:13:5: error: k2: duplicate key 'k2'");
 }
 
@@ -145,30 +140,31 @@ TEST_CASE("Errors in command-line overrides point at the --set") {
 }
 
 TEST_CASE("A deflection that reaches the inductance law's singularity is rejected") {
-  CHECK(error_of(replace(kValid, "deflection: 20 mm}", "deflection: -30 mm}")) ==
+  CHECK(error_of(replaced(kValid, "deflection: 20 mm}", "deflection: -30 mm}")) ==
         "test.yaml:18:38: error: load.deflection: the deflection reaches -0.030000 m, at or below "
         "-lambda_x = "
         "-0.028800 m where the inductance law (6.3) is singular");
 }
 
 TEST_CASE("Inconsistent model choices are explained") {
-  const std::string reduced = replace(replace(kValid,
-                                              "  thermal_force: {form: physical, force_per_kelvin: "
-                                              "2 mN/K, reference_temperature: 20 degC}\n",
-                                              "  thermal_force: {form: reduced, kappa_P: 4e-3 N/J, "
-                                              "kappa_c: 0.1 1/s, ambient_temperature: 20 degC}\n"),
-                                      "  thermal:\n    heat_capacity: 0.5 J/K\n    conductance: "
-                                      "0.05 W/K\n    ambient_temperature: 20 degC\n",
-                                      "");
+  const std::string reduced =
+      replaced(replaced(kValid,
+                        "  thermal_force: {form: physical, force_per_kelvin: "
+                        "2 mN/K, reference_temperature: 20 degC}\n",
+                        "  thermal_force: {form: reduced, kappa_P: 4e-3 N/J, "
+                        "kappa_c: 0.1 1/s, ambient_temperature: 20 degC}\n"),
+               "  thermal:\n    heat_capacity: 0.5 J/K\n    conductance: "
+               "0.05 W/K\n    ambient_temperature: 20 degC\n",
+               "");
   CHECK_NOTHROW(scenario_from_text(reduced));
-  CHECK(error_of(replace(
+  CHECK(error_of(replaced(
             reduced, "resistance: 10 ohm",
             "resistance: {form: thermal, resistance: 10 ohm, temperature_coefficient: 6.41e-3 1/K, "
             "reference_temperature: 20 degC}")) ==
         "test.yaml:11:15: error: muscle.resistance: depends on temperature, but the reduced "
         "thermal form reports "
         "none; give muscle.thermal_force.force_per_kelvin");
-  CHECK(error_of(replace(
+  CHECK(error_of(replaced(
             kValid, "form: physical, force_per_kelvin: 2 mN/K, reference_temperature: 20 degC",
             "form: reduced, kappa_P: 4e-3 N/J, kappa_c: 0.1 1/s, ambient_temperature: 20 degC")) ==
         "test.yaml:6:5: error: muscle.thermal: the reduced thermal form (7.1) has no thermal node; "

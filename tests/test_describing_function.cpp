@@ -68,14 +68,7 @@ std::vector<double> run_force_loop(const PidGains& gains, int samples) {
 // Deflection control at a constant 0.40 N through the engine: the plant (7.1), (7.5)-(7.6)
 // under an imposed force, L* by (7.3), the estimator with the thesis' filters, the PID.
 MemorySink run_deflection_loop(const PidGains& gains, double duration) {
-  SelfSensingEstimatorParameters p;
-  p.inductance.is_measure = true;
-  p.inductance.lambda_l = 2.81e-9;
-  p.inductance.lambda_x = 28.8e-3;
-  p.inductance.lambda_0 = 0.433e-6;
-  p.heating_gain = kHeating;
-  p.cooling_rate = kCooling;
-  p.mechanics = kMechanics;
+  const SelfSensingEstimatorParameters p = thesis_estimator_parameters();
   PidSettings settings;
   settings.gains = gains;
   settings.power_min = kLimits.min;

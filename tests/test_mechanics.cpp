@@ -12,9 +12,6 @@ using namespace tcpmsim::testing;
 namespace {
 // The test muscle: k1 = 10 N/m, k2 = 2.5 N/m, c = 5 N s/m, phi_0 = 0.1 N, and no heating.
 constexpr double k1 = 10.0, k2 = 2.5, c = 5.0, phi0 = 0.1;
-double allowed(double rtol, double scale) {
-  return 50.0 * rtol * scale;
-}
 }  // namespace
 
 TEST_CASE("SLS force relaxes after a deflection step with tau = c/k2") {

@@ -57,19 +57,6 @@ class ScriptedEstimator final : public SampledComponent {
   double held_ = std::numeric_limits<double>::quiet_NaN();
 };
 
-// Table 7.2 in SI, L* in seconds.
-SelfSensingEstimatorParameters thesis_estimator() {
-  SelfSensingEstimatorParameters p;
-  p.inductance.is_measure = true;
-  p.inductance.lambda_l = 2.81e-9;
-  p.inductance.lambda_x = 28.8e-3;
-  p.inductance.lambda_0 = 0.433e-6;
-  p.heating_gain = 7.2e-3;
-  p.cooling_rate = 131.6e-3;
-  p.mechanics = {10.8, 2.7, 4.3, 106.9e-3};
-  return p;
-}
-
 std::vector<double> demands(DiscretePid& pid, const std::vector<double>& estimates,
                             std::vector<double>* commands = nullptr) {
   std::vector<double> result;
@@ -246,7 +233,7 @@ TEST_CASE("Closed through the estimator, the controller sees the force of its pr
   // Force control at constant deflection, the loop of thesis 7.2.5: the estimator at t_k
   // integrates the power commanded at t_{k-1}; the controller at t_k uses that estimate. The
   // engine's sequence must equal the same recursion written out by hand, bit for bit.
-  const auto p = thesis_estimator();
+  const auto p = thesis_estimator_parameters();
   const double measure = p.inductance(20e-3, p.inductance.reference_temperature);
   auto control = settings(540.0, 1.0, 0.0, 0.10, 3.12);
   System system;

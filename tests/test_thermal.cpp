@@ -13,12 +13,6 @@ namespace {
 constexpr double kAmbient = 293.15;                     // 20 degC, as in the test muscle
 constexpr double kCapacity = 0.5, kConductance = 0.05;  // J/K, W/K: tau = 10 s
 
-// Error allowed for a global solution at relative tolerance rtol on a quantity of magnitude
-// `scale`: BDF's global error on these stable linear problems stays within tens of rtol.
-double allowed(double rtol, double scale) {
-  return 50.0 * rtol * scale;
-}
-
 double step_response(double t, double step_time, double power) {
   if (t < step_time) return kAmbient;
   return kAmbient +

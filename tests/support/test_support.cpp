@@ -31,6 +31,28 @@ Scenario scenario_from_text(const std::string& yaml, const std::vector<std::stri
   return build_scenario(ConfigNode::load_text(yaml, "test.yaml", overrides, shared_units()));
 }
 
+double allowed(double rtol, double scale) {
+  return 50.0 * rtol * scale;
+}
+
+SelfSensingEstimatorParameters thesis_estimator_parameters() {
+  SelfSensingEstimatorParameters p;
+  p.inductance.is_measure = true;
+  p.inductance.lambda_l = 2.81e-9;  // 2.81 us*mm
+  p.inductance.lambda_x = 28.8e-3;
+  p.inductance.lambda_0 = 0.433e-6;
+  p.heating_gain = 7.2e-3;
+  p.cooling_rate = 131.6e-3;
+  p.mechanics = {10.8, 2.7, 4.3, 106.9e-3};  // k1, k2 [N/m], c [N s/m], phi_0 [N]
+  return p;
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  if (at == std::string::npos) throw std::logic_error("'" + from + "' is not in the text");
+  return text.replace(at, from.size(), to);
+}
+
 Trace simulate(Scenario& scenario) {
   MemorySink sink(*scenario.system);
   Trace trace;

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "controllers/self_sensing_estimator.h"
 #include "sim/integrator.h"
 #include "sim/memory_record.h"
 #include "sim/scenario.h"
@@ -33,6 +34,16 @@ Trace simulate(const std::string& yaml, const std::vector<std::string>& override
 std::string physical_muscle_yaml();
 // The same muscle in the reduced form (7.1) with the mapped kappa_P, kappa_c.
 std::string reduced_muscle_yaml();
+
+// Error allowed for a global solution at relative tolerance rtol on a quantity of magnitude
+// `scale`: BDF's global error on these stable linear problems stays within tens of rtol.
+double allowed(double rtol, double scale);
+
+// The estimator's model with thesis Table 7.2 in SI, L* in seconds.
+SelfSensingEstimatorParameters thesis_estimator_parameters();
+
+// `text` with the first `from` replaced by `to`; throws std::logic_error if there is none.
+std::string replaced(std::string text, const std::string& from, const std::string& to);
 
 // %g formatting, for building --set overrides from numbers.
 std::string number(double value);
