@@ -20,14 +20,11 @@ std::unique_ptr<MuscleDrive> MuscleDrive::from_config(const std::string& group,
                                                       const SignalContext& signals,
                                                       bool controlled) {
   node.declare({"model", "fidelity", "pwm_frequency", "supply_voltage", "series_resistance",
-                "duty_law", "measurement", "power"});
+                "measurement", "power"});
   MuscleDriveParameters p;
   p.fidelity = node.choice_or("fidelity", {"averaged", "switched"}, "averaged") == "switched"
                    ? MuscleDriveParameters::Fidelity::switched
                    : MuscleDriveParameters::Fidelity::averaged;
-  p.duty_law = node.choice_or("duty_law", {"quadratic", "linear"}, "quadratic") == "linear"
-                   ? MuscleDriveParameters::DutyLaw::linear
-                   : MuscleDriveParameters::DutyLaw::quadratic;
   p.pwm_frequency = node.quantity_or("pwm_frequency", "Hz", 20.0, ValueCheck::positive());
   p.supply_voltage = node.quantity("supply_voltage", "V", ValueCheck::positive());
   p.series_resistance = node.quantity("series_resistance", "ohm", ValueCheck::non_negative());
@@ -84,16 +81,6 @@ double MuscleDrive::full_power(double heater_resistance) const {
   return heater_resistance * current * current;  // (7.2) at D = 1
 }
 
-double MuscleDrive::on_fraction(double duty) const {
-  return parameters_.duty_law == MuscleDriveParameters::DutyLaw::quadratic ? duty * duty : duty;
-}
-
-double MuscleDrive::duty_for_power(double power, double heater_resistance) const {
-  const double fraction = std::clamp(power / full_power(heater_resistance), 0.0, 1.0);
-  return parameters_.duty_law == MuscleDriveParameters::DutyLaw::quadratic ? std::sqrt(fraction)
-                                                                           : fraction;
-}
-
 double MuscleDrive::decay_time(double inductance, double heater_resistance) const {
   return inductance / (heater_resistance + parameters_.path_resistance) *
          std::log(on_current(heater_resistance) / parameters_.threshold_current);
@@ -122,9 +109,9 @@ void MuscleDrive::at_breakpoint(const Evaluation& evaluation) {
   if (grid_index_at(t, period())) {
     const double resistance = input(evaluation, kHeaterResistance);
     demand_ = power_demand_ ? power_demand_->value(t) : input(evaluation, kCommand);
-    duty_ = duty_for_power(demand_, resistance);
+    on_fraction_ = std::clamp(demand_ / full_power(resistance), 0.0, 1.0);
     last_on_current_ = on_current(resistance);
-    on_until_ = t + on_fraction(duty_) * period();
+    on_until_ = t + on_fraction_ * period();
     // An on-phase too short to be a breakpoint of its own (time_margin) is no on-phase: its
     // end would never be delivered and the current would stay on all period.
     on_ = on_until_ > t + 2.0 * time_margin(t);
@@ -142,7 +129,7 @@ void MuscleDrive::sense(const Evaluation& evaluation) {
   if (parameters_.fidelity != MuscleDriveParameters::Fidelity::averaged) return;
   // Nothing to report after a period with the current always on, or never on.
   const auto k = grid_index_at(evaluation.time, period());
-  if (!k || *k < 1 || on_fraction(duty_) >= 1.0 || on_fraction(duty_) <= 0.0) return;
+  if (!k || *k < 1 || on_fraction_ >= 1.0 || on_fraction_ <= 0.0) return;
   measure_ =
       measured(decay_time(input(evaluation, kInductance), input(evaluation, kHeaterResistance)));
 }
@@ -158,7 +145,7 @@ double MuscleDrive::next_breakpoint_after(double t) const {
 void MuscleDrive::compute_outputs(const Evaluation& evaluation) const {
   const double resistance = input(evaluation, kHeaterResistance);
   if (parameters_.fidelity == MuscleDriveParameters::Fidelity::averaged) {
-    const double power = on_fraction(duty_) * full_power(resistance);  // (7.2)
+    const double power = on_fraction_ * full_power(resistance);  // (7.2)
     set_output(evaluation, kPower, power);
     set_output(evaluation, kCurrent, std::sqrt(power / resistance));  // RMS
   } else {
@@ -166,7 +153,7 @@ void MuscleDrive::compute_outputs(const Evaluation& evaluation) const {
     set_output(evaluation, kPower, resistance * current * current);
     set_output(evaluation, kCurrent, current);
   }
-  set_output(evaluation, kDuty, duty_);
+  set_output(evaluation, kDuty, std::sqrt(on_fraction_));  // D of (7.2)
   set_output(evaluation, kMeasure, measure_);
   set_output(evaluation, kOn, on_ ? 1.0 : 0.0);
   set_output(evaluation, kDemand, demand_);

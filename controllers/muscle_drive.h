@@ -22,17 +22,15 @@ namespace tcpmsim {
 //
 // The power law. (7.2), P = D^2 R_m (U_b/R_b)^2, and the thesis' limits (D = 0.85 gives
 // 3.12 W) are quadratic in the duty parameter D, while a plain PWM dissipates in proportion to
-// its on-time. The `quadratic` law (the default) therefore switches on for a fraction D^2 of
-// each period, the only timing consistent with (7.2); `linear` switches on for D.
+// its on-time. The drive therefore switches on for a fraction D^2 = P / P_full of each period,
+// the only timing consistent with (7.2), and reports D = sqrt(P / P_full).
 //
 // Fidelity `averaged` replaces the current by its period average (P by the law above) and
 // computes t_d from L and R at each period's start; `switched` integrates the current (time
 // constant ~0.1 us against a 50 ms period), stopping at every switching edge.
 struct MuscleDriveParameters {
   enum class Fidelity { averaged, switched };
-  enum class DutyLaw { quadratic, linear };
   Fidelity fidelity = Fidelity::averaged;
-  DutyLaw duty_law = DutyLaw::quadratic;
   double pwm_frequency = 20.0;       // [Hz]
   double supply_voltage = 7.0;       // U_b [V]
   double series_resistance = 0.57;   // R_s = R_b - R_m [ohm]
@@ -75,10 +73,8 @@ class MuscleDrive final : public Component {
   std::vector<SignalRecord> signal_records() const override;
 
   const MuscleDriveParameters& parameters() const { return parameters_; }
-  // Full-on power and the duty for a power, by the configured law.
+  // Full-on power, (7.2) at D = 1.
   double full_power(double heater_resistance) const;
-  double duty_for_power(double power, double heater_resistance) const;
-  double on_fraction(double duty) const;
   // The decay time the measurement would see for inductance L and heater resistance R_m [s].
   double decay_time(double inductance, double heater_resistance) const;
   long measurements() const { return measurements_; }
@@ -93,9 +89,9 @@ class MuscleDrive final : public Component {
   std::unique_ptr<Signal> power_demand_;
   RandomStream random_;
   // Held from the latest period start / switching edge.
-  double duty_ = 0.0;
-  double demand_ = 0.0;    // the power asked for this period [W]
-  double on_until_ = 0.0;  // end of this period's on-phase [s]
+  double on_fraction_ = 0.0;  // D^2 = P / P_full, in [0, 1]
+  double demand_ = 0.0;       // the power asked for this period [W]
+  double on_until_ = 0.0;     // end of this period's on-phase [s]
   bool on_ = false;
   double switched_off_at_ = -1.0;
   bool awaiting_decay_ = false;

@@ -396,6 +396,7 @@ SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output, Ou
     cv.segment_start = t + margin;
     cv.segment_end = stop - time_margin(stop);
     ++statistics_.segments;
+    collapsed_steps = 0;  // a restart's first steps are small by design
     double reached = t;
     while (reached < stop) {
       cv.rhs_problem.clear();

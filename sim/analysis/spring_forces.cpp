@@ -66,9 +66,18 @@ struct PreparedRun {
   double load_seconds = 0.0;
 };
 
-PreparedRun prepare(const std::string& config, std::shared_ptr<const UnitSystem> units) {
+PreparedRun prepare(const std::string& config, double window,
+                    std::shared_ptr<const UnitSystem> units) {
   const auto started = std::chrono::steady_clock::now();
   PreparedRun run{load_scenario(config, {}, std::move(units))};
+  const auto& settings = run.scenario.settings;
+  if (!(window > 0.0) || settings.duration - window < settings.output_start - 1e-12) {
+    char problem[160];
+    std::snprintf(problem, sizeof problem,
+                  ": the analysis window (%g s) must lie within the recorded %g s to %g s", window,
+                  settings.output_start, settings.duration);
+    throw std::runtime_error(config + problem);
+  }
   const auto* chain = run.scenario.system->find<const CoilSpringChain>();
   const auto* sensor = run.scenario.system->find<const CoilSpringInductance>();
   if (!chain || !sensor) {
@@ -127,7 +136,7 @@ std::vector<SpringForceRow> run_spring_forces(const std::vector<std::string>& co
                                               double window, int threads,
                                               std::shared_ptr<const UnitSystem> units) {
   std::vector<PreparedRun> runs;
-  for (const auto& config : configs) runs.push_back(prepare(config, units));
+  for (const auto& config : configs) runs.push_back(prepare(config, window, units));
   std::vector<SpringForceRow> rows(configs.size());
   run_in_parallel(configs, threads, [&](std::size_t k) { rows[k] = integrate(runs[k], window); });
   return rows;

@@ -20,13 +20,13 @@ namespace {
 // Eigenfrequencies and transmissibility of each distinct spring among the scenarios.
 void print_modes(const std::vector<std::string>& configs, std::ostream& out,
                  std::shared_ptr<const UnitSystem> units) {
-  std::set<std::tuple<int, double, double>> seen;
+  std::set<std::tuple<int, double, double, double>> seen;
   char line[256];
   for (const auto& config : configs) {
     const Scenario scenario = load_scenario(config, {}, units);
     if (const auto* chain = scenario.system->find<const CoilSpringChain>()) {
       const auto& p = chain->parameters();
-      if (!seen.insert({p.windings, p.mass, p.stiffness}).second) continue;
+      if (!seen.insert({p.windings, p.mass, p.stiffness, p.damping_ratio}).second) continue;
       std::snprintf(line, sizeof line, "\nSpring N = %d, m = %g g, k = %g N/m (from %s)\n",
                     p.windings, p.mass * 1e3, p.stiffness, scenario.settings.name.c_str());
       out << line << "  clamped eigenfrequencies, lumped against n pi sqrt(k/m) (4.3):\n";

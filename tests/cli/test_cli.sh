@@ -76,6 +76,9 @@ expect 4 "two results under one name are an output error, not a crash" -- "$tcpm
   || { echo "FAIL: twice.h5 left behind"; ls "$work"; failures=$((failures + 1)); }
 expect 4 "a spring-force output the file system refuses is an output error" -- "$tcpmsim" spring-forces \
   "$source_dir/configs/ch4/st_heel_strike.yaml" -o "$work/taken.h5" --quiet
+expect 4 "an analysis window longer than the record is refused, not analysed short" -- "$tcpmsim" \
+  spring-forces "$source_dir/configs/ch4/st_heel_strike.yaml" --window 1 -o "$work/window.h5"
+contains "$work/err" "the analysis window (1 s) must lie within the recorded" "the window error says why"
 expect 2 "spring-forces with a missing file is a usage error" -- "$tcpmsim" spring-forces "$work/none.yaml"
 expect 2 "coil-fit with a missing data directory is a usage error" -- "$tcpmsim" coil-fit \
   "$source_dir/configs/springs/s1.yaml" --data "$work/none"
