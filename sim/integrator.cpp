@@ -26,7 +26,6 @@ struct detail::CvodeHandles {
   SUNContext context = nullptr;
   N_Vector state = nullptr;
   N_Vector scratch = nullptr;
-  N_Vector tolerances = nullptr;
   SUNMatrix matrix = nullptr;
   SUNLinearSolver linear_solver = nullptr;
   SUNNonlinearSolver nonlinear_solver = nullptr;
@@ -42,7 +41,6 @@ struct detail::CvodeHandles {
   double signal_time(double t) const { return std::clamp(t, segment_start, segment_end); }
   std::string last_message;
   std::string rhs_problem;
-  double relative_tolerance = 0.0;
   SparsityPattern pattern;
   std::vector<std::vector<int>> column_groups;
   std::vector<double> perturbed;
@@ -57,7 +55,6 @@ struct detail::CvodeHandles {
     if (nonlinear_solver) SUNNonlinSolFree(nonlinear_solver);
     if (linear_solver) SUNLinSolFree(linear_solver);
     if (matrix) SUNMatDestroy(matrix);
-    if (tolerances) N_VDestroy(tolerances);
     if (scratch) N_VDestroy(scratch);
     if (state) N_VDestroy(state);
     if (context) SUNContext_Free(&context);
@@ -168,7 +165,8 @@ int sparse_jacobian(realtype t, N_Vector y, N_Vector fy, SUNMatrix jacobian, voi
   auto& cv = cvode_of(user_data);
   const double* state = N_VGetArrayPointer(y);
   const double* base = N_VGetArrayPointer(fy);
-  const double* absolute = N_VGetArrayPointer(cv.tolerances);
+  const double* absolute = cv.adapted_tolerances.data();
+  const double* relative = cv.relative_tolerances.data();
   write_structure(cv.pattern, jacobian);
   double* data = SUNSparseMatrix_Data(jacobian);
   const sunindextype* column_start = SUNSparseMatrix_IndexPointers(jacobian);
@@ -176,7 +174,7 @@ int sparse_jacobian(realtype t, N_Vector y, N_Vector fy, SUNMatrix jacobian, voi
   std::copy(state, state + cv.pattern.size, cv.perturbed.begin());
   for (const auto& group : cv.column_groups) {
     for (int column : group) {
-      const double scale = cv.relative_tolerance * std::abs(state[column]) + absolute[column];
+      const double scale = relative[column] * std::abs(state[column]) + absolute[column];
       cv.perturbed[static_cast<std::size_t>(column)] +=
           root_epsilon * std::max(std::abs(state[column]), scale);
     }
@@ -217,20 +215,16 @@ Integrator::Integrator(System& system, SolverSettings settings)
   if (size == 0) throw std::logic_error("the system has no continuous states to integrate");
   auto& cv = *cvode_;
   cv.system = &system_;
-  cv.relative_tolerance = settings_.relative_tolerance;
   check(SUNContext_Create(nullptr, &cv.context), "SUNContext_Create");
   cv.state = N_VNew_Serial(size, cv.context);
   install_optimised_serial_kernels(cv.state);  // before cloning: the clones inherit them
   cv.scratch = N_VClone(cv.state);
-  cv.tolerances = N_VClone(cv.state);
-  double* tolerances = N_VGetArrayPointer(cv.tolerances);
   for (int i = 0; i < size; ++i) {
     const auto index = static_cast<std::size_t>(i);
-    tolerances[i] = settings_.absolute_tolerances.empty()
-                        ? system_.states()[index].absolute_tolerance
-                        : settings_.absolute_tolerances.at(index);
+    cv.configured_tolerances.push_back(settings_.absolute_tolerances.empty()
+                                           ? system_.states()[index].absolute_tolerance
+                                           : settings_.absolute_tolerances.at(index));
   }
-  cv.configured_tolerances.assign(tolerances, tolerances + size);
   cv.adapted_tolerances = cv.configured_tolerances;
   cv.relative_tolerances.assign(static_cast<std::size_t>(size), settings_.relative_tolerance);
   cv.memory =
@@ -335,8 +329,6 @@ void Integrator::refresh_tolerances() {
   std::fill(cv.relative_tolerances.begin(), cv.relative_tolerances.end(),
             settings_.relative_tolerance);
   system_.adapt_tolerances(cv.adapted_tolerances.data(), cv.relative_tolerances.data());
-  std::copy(cv.adapted_tolerances.begin(), cv.adapted_tolerances.end(),
-            N_VGetArrayPointer(cv.tolerances));
 }
 
 void Integrator::start_segment(double start, bool first) {
