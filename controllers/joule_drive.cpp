@@ -74,9 +74,11 @@ std::vector<InputDeclaration> JouleDrive::inputs() const {
 }
 
 double JouleDrive::power_from_duty(double duty, double heater_resistance) const {
-  const double current =
-      parameters_.supply_voltage / (parameters_.series_resistance + heater_resistance);
-  return duty * duty * heater_resistance * current * current;  // (7.2)
+  return supply().power(duty, heater_resistance);  // (7.2)
+}
+
+PwmSupply JouleDrive::supply() const {
+  return {parameters_.supply_voltage, parameters_.series_resistance};
 }
 
 void JouleDrive::compute_outputs(const Evaluation& evaluation) const {
@@ -89,8 +91,7 @@ void JouleDrive::compute_outputs(const Evaluation& evaluation) const {
       const double heater = input(evaluation, kHeaterResistance);
       set_output(evaluation, kPower, power_from_duty(command, heater));
       set_output(evaluation, kCommand, command);
-      set_output(evaluation, kCurrent,
-                 command * parameters_.supply_voltage / (parameters_.series_resistance + heater));
+      set_output(evaluation, kCurrent, command * supply().on_current(heater));
       return;
     }
     case JouleDriveParameters::Mode::current:

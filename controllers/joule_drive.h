@@ -2,6 +2,7 @@
 
 #include <memory>
 
+#include "controllers/pwm_supply.h"
 #include "controllers/signals/signal_config.h"
 #include "sim/component.h"
 
@@ -45,6 +46,7 @@ class JouleDrive final : public Component {
   double power_from_duty(double duty, double heater_resistance) const;
 
  private:
+  PwmSupply supply() const;
   JouleDriveParameters parameters_;
   std::unique_ptr<Signal> command_;
 };

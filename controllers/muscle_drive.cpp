@@ -72,18 +72,13 @@ std::vector<InputDeclaration> MuscleDrive::inputs() const {
   return declared;
 }
 
-double MuscleDrive::on_current(double heater_resistance) const {
-  return parameters_.supply_voltage / (parameters_.series_resistance + heater_resistance);
-}
-
-double MuscleDrive::full_power(double heater_resistance) const {
-  const double current = on_current(heater_resistance);
-  return heater_resistance * current * current;  // (7.2) at D = 1
+PwmSupply MuscleDrive::supply() const {
+  return {parameters_.supply_voltage, parameters_.series_resistance};
 }
 
 double MuscleDrive::decay_time(double inductance, double heater_resistance) const {
   return inductance / (heater_resistance + parameters_.path_resistance) *
-         std::log(on_current(heater_resistance) / parameters_.threshold_current);
+         std::log(supply().on_current(heater_resistance) / parameters_.threshold_current);
 }
 
 double MuscleDrive::measured(double decay) {
@@ -109,8 +104,8 @@ void MuscleDrive::at_breakpoint(const Evaluation& evaluation) {
   if (grid_index_at(t, period())) {
     const double resistance = input(evaluation, kHeaterResistance);
     demand_ = power_demand_ ? power_demand_->value(t) : input(evaluation, kCommand);
-    on_fraction_ = std::clamp(demand_ / full_power(resistance), 0.0, 1.0);
-    last_on_current_ = on_current(resistance);
+    on_fraction_ = std::clamp(demand_ / supply().full_power(resistance), 0.0, 1.0);
+    last_on_current_ = supply().on_current(resistance);
     on_until_ = t + on_fraction_ * period();
     // An on-phase too short to be a breakpoint of its own (time_margin) is no on-phase: its
     // end would never be delivered and the current would stay on all period.
@@ -145,7 +140,7 @@ double MuscleDrive::next_breakpoint_after(double t) const {
 void MuscleDrive::compute_outputs(const Evaluation& evaluation) const {
   const double resistance = input(evaluation, kHeaterResistance);
   if (parameters_.fidelity == MuscleDriveParameters::Fidelity::averaged) {
-    const double power = on_fraction_ * full_power(resistance);  // (7.2)
+    const double power = on_fraction_ * supply().full_power(resistance);  // (7.2)
     set_output(evaluation, kPower, power);
     set_output(evaluation, kCurrent, std::sqrt(power / resistance));  // RMS
   } else {

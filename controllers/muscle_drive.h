@@ -2,6 +2,7 @@
 
 #include <memory>
 
+#include "controllers/pwm_supply.h"
 #include "controllers/signals/random_stream.h"
 #include "controllers/signals/signal_config.h"
 #include "sim/component.h"
@@ -73,15 +74,13 @@ class MuscleDrive final : public Component {
   std::vector<SignalRecord> signal_records() const override;
 
   const MuscleDriveParameters& parameters() const { return parameters_; }
-  // Full-on power, (7.2) at D = 1.
-  double full_power(double heater_resistance) const;
   // The decay time the measurement would see for inductance L and heater resistance R_m [s].
   double decay_time(double inductance, double heater_resistance) const;
   long measurements() const { return measurements_; }
 
  private:
   double period() const { return 1.0 / parameters_.pwm_frequency; }
-  double on_current(double heater_resistance) const;
+  PwmSupply supply() const;
   double last_on_current_ = 0.0;
   double measured(double decay_time);  // quantisation, noise, spikes
 
