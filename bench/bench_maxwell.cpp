@@ -7,10 +7,10 @@
 #include <cstdio>
 #include <vector>
 
-#include "controllers/signals/random_stream.h"
 #include "models/inductance/loop_mutual.h"
 #include "models/inductance/maxwell.h"
 #include "models/inductance/maxwell_evaluator.h"
+#include "sim/random_stream.h"
 
 namespace {
 template <typename F>

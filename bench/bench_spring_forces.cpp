@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/analysis/spring_forces.h"
+#include "analysis/spring_forces.h"
 
 int main(int argc, char** argv) {
   const std::string folder = argc > 1 ? argv[1] : "configs/ch4";

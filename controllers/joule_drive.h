@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "controllers/pwm_supply.h"
-#include "controllers/signals/signal_config.h"
+#include "signals/signal_config.h"
 #include "sim/component.h"
 
 namespace tcpmsim {

@@ -3,9 +3,9 @@
 #include <memory>
 
 #include "controllers/pwm_supply.h"
-#include "controllers/signals/random_stream.h"
-#include "controllers/signals/signal_config.h"
+#include "signals/signal_config.h"
 #include "sim/component.h"
+#include "sim/random_stream.h"
 
 namespace tcpmsim {
 

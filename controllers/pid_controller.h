@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "controllers/signals/signal_config.h"
+#include "signals/signal_config.h"
 #include "sim/config/config_node.h"
 #include "sim/sampled_component.h"
 

@@ -125,7 +125,7 @@ struct SelfSensingEstimate {
 // uncalibrated deflection, so changing an offset never produces a velocity impulse; after a
 // change of the deflection offset, F_l moves to the new deflection with the SLS's relaxation
 // time c/k2. To calibrate, average true - estimate over the calibration window and add it to the
-// current offset (calibration_offset in sim/analysis/control_tasks.h).
+// current offset (calibration_offset in analysis/control_tasks.h).
 class SelfSensingEstimator final : public SampledComponent {
  public:
   enum Input { kInductanceMeasure, kPowerCommand };

@@ -3,7 +3,7 @@
 #include <Eigen/Dense>
 #include <memory>
 
-#include "controllers/signals/signal_config.h"
+#include "signals/signal_config.h"
 #include "sim/component.h"
 
 namespace tcpmsim {

@@ -2,8 +2,8 @@
 
 #include <memory>
 
-#include "controllers/signals/signal.h"
 #include "sim/component.h"
+#include "sim/signal.h"
 
 namespace tcpmsim {
 

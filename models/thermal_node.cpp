@@ -1,6 +1,6 @@
 #include "models/thermal_node.h"
 
-#include "controllers/signals/signal_config.h"
+#include "signals/signal_config.h"
 
 namespace tcpmsim {
 

@@ -3,7 +3,7 @@
 #include <memory>
 #include <optional>
 
-#include "controllers/signals/signal_config.h"
+#include "signals/signal_config.h"
 #include "sim/component.h"
 #include "sim/config/config_node.h"
 

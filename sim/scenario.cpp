@@ -6,7 +6,6 @@
 #include "controllers/muscle_drive.h"
 #include "controllers/pid_controller.h"
 #include "controllers/self_sensing_estimator.h"
-#include "controllers/signals/signal_config.h"
 #include "models/coil_impedance.h"
 #include "models/coil_spring_chain.h"
 #include "models/coil_spring_inductance.h"
@@ -16,6 +15,7 @@
 #include "models/sls_mechanics.h"
 #include "models/thermal_force.h"
 #include "models/thermal_node.h"
+#include "signals/signal_config.h"
 
 namespace tcpmsim {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "sim/analysis/coil_fit_analysis.h"
-#include "sim/analysis/thesis_tables.h"
+#include "analysis/coil_fit_analysis.h"
+#include "analysis/thesis_tables.h"
 #include "tests/support/test_support.h"
 
 using namespace tcpmsim;
@@ -100,7 +100,7 @@ TEST_CASE("Weaver's helix integral reproduces the Neumann (Helix) columns to the
 }
 
 TEST_CASE("The published Rosa column is Rosa with an un-iterated AGM for Nagaoka's K and E") {
-  // The published code's defect (sim/analysis/published_rosa.h) reproduces every Rosa value of
+  // The published code's defect (analysis/published_rosa.h) reproduces every Rosa value of
   // both tables; the correct Rosa does not (README, coil-spring section).
   check_printed_column("rosa_published", kRosa);
 }

@@ -7,8 +7,8 @@
 #include <fstream>
 #include <string>
 
-#include "sim/analysis/coil_fit_analysis.h"
-#include "sim/analysis/coil_sequence.h"
+#include "analysis/coil_fit_analysis.h"
+#include "analysis/coil_sequence.h"
 #include "sim/io/delimited_file.h"
 #include "tests/support/test_support.h"
 

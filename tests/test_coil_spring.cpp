@@ -6,11 +6,11 @@
 #include <complex>
 #include <numbers>
 
+#include "analysis/spring_forces.h"
+#include "analysis/spring_modes.h"
 #include "models/coil_spring_chain.h"
 #include "models/inductance/loop_mutual.h"
 #include "models/inductance/maxwell.h"
-#include "sim/analysis/spring_forces.h"
-#include "sim/analysis/spring_modes.h"
 #include "tests/support/test_support.h"
 
 using namespace tcpmsim;

@@ -7,9 +7,9 @@
 #include <numeric>
 #include <random>
 
-#include "controllers/signals/control_task_signals.h"
-#include "sim/analysis/control_tasks.h"
-#include "sim/analysis/statistics.h"
+#include "analysis/control_tasks.h"
+#include "analysis/statistics.h"
+#include "signals/control_task_signals.h"
 
 using namespace tcpmsim;
 

@@ -9,9 +9,9 @@
 #include <string>
 #include <utility>
 
-#include "sim/analysis/control_task_runner.h"
-#include "sim/analysis/control_tasks_command.h"
-#include "sim/analysis/describing_function.h"
+#include "analysis/control_task_runner.h"
+#include "analysis/control_tasks_command.h"
+#include "analysis/describing_function.h"
 #include "tests/support/test_support.h"
 
 using namespace tcpmsim;

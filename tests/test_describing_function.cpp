@@ -7,12 +7,12 @@
 #include <complex>
 #include <numbers>
 
+#include "analysis/control_tasks.h"
+#include "analysis/describing_function.h"
 #include "controllers/pid_controller.h"
 #include "controllers/self_sensing_estimator.h"
-#include "controllers/signals/constant_signal.h"
 #include "models/thermal_force.h"
-#include "sim/analysis/control_tasks.h"
-#include "sim/analysis/describing_function.h"
+#include "signals/constant_signal.h"
 #include "tests/support/test_components.h"
 #include "tests/support/test_support.h"
 

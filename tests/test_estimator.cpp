@@ -8,12 +8,12 @@
 #include <numbers>
 #include <random>
 
+#include "analysis/control_tasks.h"
 #include "controllers/discrete_filters.h"
 #include "controllers/self_sensing_estimator.h"
-#include "controllers/signals/piecewise_constant_signal.h"
-#include "controllers/signals/piecewise_linear_signal.h"
 #include "models/thermal_force.h"
-#include "sim/analysis/control_tasks.h"
+#include "signals/piecewise_constant_signal.h"
+#include "signals/piecewise_linear_signal.h"
 #include "tests/support/test_components.h"
 #include "tests/support/test_support.h"
 

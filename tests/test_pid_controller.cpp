@@ -8,9 +8,9 @@
 
 #include "controllers/pid_controller.h"
 #include "controllers/self_sensing_estimator.h"
-#include "controllers/signals/constant_signal.h"
-#include "controllers/signals/piecewise_constant_signal.h"
-#include "controllers/signals/sine_signal.h"
+#include "signals/constant_signal.h"
+#include "signals/piecewise_constant_signal.h"
+#include "signals/sine_signal.h"
 #include "tests/support/test_components.h"
 #include "tests/support/test_support.h"
 

@@ -8,9 +8,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "sim/analysis/coil_fit_command.h"
-#include "sim/analysis/control_tasks_command.h"
-#include "sim/analysis/spring_forces_command.h"
+#include "analysis/coil_fit_command.h"
+#include "analysis/control_tasks_command.h"
+#include "analysis/spring_forces_command.h"
 #include "sim/run.h"
 #include "tests/support/record_digest.h"
 #include "tests/support/test_support.h"

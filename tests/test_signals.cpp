@@ -4,13 +4,13 @@
 #include <cmath>
 #include <numbers>
 
-#include "controllers/signals/log_sweep_signal.h"
-#include "controllers/signals/multisine_signal.h"
-#include "controllers/signals/periodic_signal.h"
-#include "controllers/signals/piecewise_constant_signal.h"
-#include "controllers/signals/random_steps.h"
-#include "controllers/signals/sequence_signal.h"
-#include "controllers/signals/signal_config.h"
+#include "signals/log_sweep_signal.h"
+#include "signals/multisine_signal.h"
+#include "signals/periodic_signal.h"
+#include "signals/piecewise_constant_signal.h"
+#include "signals/random_steps.h"
+#include "signals/sequence_signal.h"
+#include "signals/signal_config.h"
 #include "tests/support/test_support.h"
 
 using namespace tcpmsim;

@@ -7,7 +7,7 @@
 #include <cstring>
 #include <vector>
 
-#include "controllers/signals/random_stream.h"
+#include "sim/random_stream.h"
 #include "sim/serial_vector_kernels.h"
 
 using namespace tcpmsim;

@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <map>
 
-#include "controllers/signals/signal.h"
 #include "sim/io/hdf5_files.h"
+#include "sim/signal.h"
 #include "tcpmsim/version.h"
 
 namespace tcpmsim {

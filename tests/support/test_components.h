@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "controllers/signals/signal.h"
 #include "models/impedance_laws.h"
 #include "sim/component.h"
+#include "sim/signal.h"
 
 namespace tcpmsim::testing {
 

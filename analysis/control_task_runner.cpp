@@ -1,0 +1,279 @@
+#include "analysis/control_task_runner.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <stdexcept>
+
+#include "controllers/pid_controller.h"
+#include "controllers/self_sensing_estimator.h"
+#include "signals/control_task_signals.h"
+#include "sim/io/hdf5_writer.h"
+#include "sim/memory_record.h"
+#include "sim/parallel_runs.h"
+#include "sim/run.h"
+
+namespace tcpmsim {
+
+namespace {
+
+// Section 7.3.4's calibration, and the thesis' deflection controller used during the force one.
+constexpr double kCalibrationSettle = 30.0;  // [s] before averaging
+constexpr double kDeflectionAverage = 10.0;  // [s]
+constexpr double kForceAverage = 30.0;       // [s]
+constexpr const char* kHoldDeflection = "load={type: deflection, deflection: 20 mm}";
+constexpr const char* kHoldForce = "load={type: force, force: 0.40 N}";
+constexpr const char* kDeflectionControl =
+    "controller={target: deflection, reference: 20 mm, gains: {proportional: -1.08 W/mm, "
+    "integral_time: 2.5 s, "
+    "derivative_time: 0.625 s}, power_limits: [0.10 W, 3.12 W]}";
+
+template <typename T>
+T& required(const Scenario& scenario, const std::string& what) {
+  if (auto* found = scenario.system->find<T>()) return *found;
+  throw std::invalid_argument("the scenario has no " + what);
+}
+
+// The three runs of one task, loaded up front: udunits2's parser is not thread-safe.
+struct PreparedTask {
+  std::string config;
+  Scenario deflection_calibration, force_calibration, task;
+};
+
+std::vector<std::string> with(const std::vector<std::string>& base,
+                              std::initializer_list<std::string> extra) {
+  std::vector<std::string> all(base);
+  all.insert(all.end(), extra.begin(), extra.end());
+  return all;
+}
+
+PreparedTask prepare(const std::string& config, const ControlTaskSettings& settings,
+                     const std::shared_ptr<const UnitSystem>& units) {
+  const auto seconds = [](double s) { return "scenario.duration=" + std::to_string(s) + " s"; };
+  PreparedTask prepared{config, {}, {}, load_scenario(config, settings.overrides, units)};
+  if (settings.calibrate) {
+    prepared.deflection_calibration =
+        load_scenario(config,
+                      with(settings.overrides,
+                           {kHoldDeflection, seconds(kCalibrationSettle + kDeflectionAverage)}),
+                      units);
+    prepared.force_calibration = load_scenario(
+        config,
+        with(settings.overrides,
+             {kHoldForce, kDeflectionControl, seconds(kCalibrationSettle + kForceAverage)}),
+        units);
+  }
+  return prepared;
+}
+
+MemoryRecord simulate(Scenario& scenario, SolverStatistics* statistics = nullptr) {
+  MemoryRecord record(*scenario.system);
+  const auto totals = integrate(scenario, record);
+  if (statistics) *statistics = totals;
+  return record;
+}
+
+// mean(truth - estimate) over [from, to).
+double offset_over(const MemoryRecord& record, const std::string& truth,
+                   const std::string& estimate, double from, double to) {
+  std::vector<double> t, e;
+  for (std::size_t k = 0; k < record.time.size(); ++k) {
+    if (record.time[k] < from || record.time[k] >= to || !std::isfinite(record[estimate][k]))
+      continue;
+    t.push_back(record[truth][k]);
+    e.push_back(record[estimate][k]);
+  }
+  return calibration_offset(t, e);
+}
+
+ControlTaskResult run_task(PreparedTask& prepared, bool calibrate) {
+  const auto started = std::chrono::steady_clock::now();
+  ControlTaskResult result;
+  result.scenario = prepared.task.settings.name;
+  auto& controller = required<PidController>(prepared.task, "controller");
+  auto& estimator = required<SelfSensingEstimator>(prepared.task, "self-sensing estimator");
+  result.controls_deflection = controller.target() == PidController::Target::deflection;
+  if (calibrate) {
+    const auto deflection = simulate(prepared.deflection_calibration);
+    result.deflection_offset =
+        offset_over(deflection, "muscle/deflection", "estimator/deflection", kCalibrationSettle,
+                    kCalibrationSettle + kDeflectionAverage);
+    // The measured offsets add to those the scenario configures (calibration_offset).
+    auto& force_estimator =
+        required<SelfSensingEstimator>(prepared.force_calibration, "self-sensing estimator");
+    force_estimator.set_deflection_offset(force_estimator.deflection_offset() +
+                                          result.deflection_offset);
+    const auto force = simulate(prepared.force_calibration);
+    result.force_offset = offset_over(force, "muscle/force", "estimator/force", kCalibrationSettle,
+                                      kCalibrationSettle + kForceAverage);
+    estimator.set_deflection_offset(estimator.deflection_offset() + result.deflection_offset);
+    estimator.set_force_offset(estimator.force_offset() + result.force_offset);
+  }
+  const auto record = simulate(prepared.task, &result.statistics);
+
+  // The task starts at the reference's first change; before it the muscle settles.
+  const Signal& reference = *controller.signal_records().front().signal;
+  const double start = reference.next_breakpoint_after(0.0);
+  const std::string truth = result.controls_deflection ? "muscle/deflection" : "muscle/force";
+  const std::string estimate =
+      result.controls_deflection ? "estimator/deflection" : "estimator/force";
+  // From one sample before the first change, so that the first step is seen as one.
+  const auto first_after = static_cast<std::size_t>(
+      std::lower_bound(record.time.begin(), record.time.end(), start - 1e-9) - record.time.begin());
+  std::vector<double> time, r, y;
+  for (std::size_t k = first_after > 0 ? first_after - 1 : 0; k < record.time.size(); ++k) {
+    time.push_back(record.time[k]);
+    r.push_back(record["controller/reference"][k]);
+    y.push_back(record[truth][k]);
+    if (record.time[k] >= start - 1e-9)
+      result.estimation_errors.push_back(record[estimate][k] - record[truth][k]);
+  }
+  if (const auto* sweep = dynamic_cast<const SteppedSineSignal*>(&reference)) {
+    result.response = sweep_frequency_response(time, r, y, sweep->schedule());
+    result.bandwidth = bandwidth_3db(result.response);
+  } else {
+    result.rises = step_rise_times(time, r, y);
+  }
+  result.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return result;
+}
+
+}  // namespace
+
+std::vector<ControlTaskResult> run_control_tasks(const std::vector<std::string>& configs,
+                                                 const ControlTaskSettings& settings,
+                                                 std::shared_ptr<const UnitSystem> units) {
+  std::vector<PreparedTask> prepared;
+  for (const auto& config : configs) prepared.push_back(prepare(config, settings, units));
+  std::vector<ControlTaskResult> results(configs.size());
+  run_in_parallel(configs, settings.threads,
+                  [&](std::size_t k) { results[k] = run_task(prepared[k], settings.calibrate); });
+  return results;
+}
+
+namespace {
+
+struct Summary {
+  std::vector<double> rise_times;  // reached steps only
+  int outliers = 0;                // steps charged their hold
+  std::optional<double> bandwidth;
+  std::vector<double> errors;
+};
+
+Summary summarise(const std::vector<ControlTaskResult>& results, bool deflection) {
+  Summary summary;
+  for (const auto& result : results) {
+    if (result.controls_deflection != deflection) continue;
+    for (const auto& rise : result.rises) {
+      if (rise.reached) {
+        summary.rise_times.push_back(rise.rise_time);
+      } else {
+        ++summary.outliers;
+      }
+    }
+    if (!result.response.empty()) summary.bandwidth = result.bandwidth;
+    for (double e : result.estimation_errors) {
+      if (std::isfinite(e)) summary.errors.push_back(e);
+    }
+  }
+  return summary;
+}
+
+std::string range_text(const std::vector<double>& values, int outliers) {
+  char text[96];
+  if (values.empty()) {
+    std::snprintf(text, sizeof text, "none reached (%d at the hold)", outliers);
+  } else {
+    const auto [low, high] = std::minmax_element(values.begin(), values.end());
+    std::snprintf(text, sizeof text, "%.1f-%.1f s, %d at the 20 s hold", *low, *high, outliers);
+  }
+  return text;
+}
+
+}  // namespace
+
+std::string format_control_task_report(const std::vector<ControlTaskResult>& results) {
+  std::string text = "Thesis chapter 7 control tasks (section 7.4), ours against the thesis\n";
+  char line[256];
+  const auto add_row = [&](const char* quantity, const std::string& ours, const char* thesis) {
+    std::snprintf(line, sizeof line, "  %-24s %-34s thesis %s\n", quantity, ours.c_str(), thesis);
+    text += line;
+  };
+  for (bool deflection : {true, false}) {
+    const Summary summary = summarise(results, deflection);
+    const ErrorStatistics errors =
+        summary.errors.empty() ? ErrorStatistics{} : error_statistics(summary.errors);
+    text += deflection ? "\nDeflection control:\n" : "\nForce control:\n";
+    add_row("rise times (10-90 %)", range_text(summary.rise_times, summary.outliers),
+            deflection ? "4.2-14.1 s, outliers at 20 s" : "2.1-5.1 s, outliers at 20 s");
+    std::string bandwidth = "not bracketed by the sweep";
+    if (summary.bandwidth) {
+      std::snprintf(line, sizeof line, "%.3f Hz", *summary.bandwidth);
+      bandwidth = line;
+    }
+    add_row("-3 dB bandwidth", bandwidth, deflection ? "0.039 Hz" : "0.056 Hz");
+    // Both estimates are reported in milli-units: mm for deflection, mN for force.
+    std::snprintf(line, sizeof line, "%+.2f +- %.2f %s (mean, 95 %% band)", 1e3 * errors.mean,
+                  1e3 * errors.half_width_95, deflection ? "mm" : "mN");
+    add_row("estimation error", line, deflection ? "-0.27 +- 2.14 mm" : "+7.5 +- 29.0 mN");
+  }
+  for (const auto& result : results) {
+    std::snprintf(line, sizeof line,
+                  "\n%s: calibration offsets %+.3f mm, %+.2f mN; %ld steps, %.2f s\n",
+                  result.scenario.c_str(), 1e3 * result.deflection_offset,
+                  1e3 * result.force_offset, result.statistics.steps, result.wall_seconds);
+    text += line;
+    for (const auto& point : result.response) {
+      std::snprintf(line, sizeof line, "  %.5f Hz  %+6.2f dB  %+7.1f deg\n", point.frequency,
+                    point.magnitude_db, point.phase * 180.0 / std::numbers::pi);
+      text += line;
+    }
+    for (const auto& rise : result.rises) {
+      std::snprintf(line, sizeof line, "  step at %6.1f s to %8.4f: rise %5.1f s%s\n",
+                    rise.step_time, rise.target, rise.rise_time,
+                    rise.reached ? "" : " (not reached)");
+      text += line;
+    }
+  }
+  return text;
+}
+
+void write_control_task_report(const std::vector<ControlTaskResult>& results,
+                               const std::string& path) {
+  Hdf5Writer file(path);
+  for (const auto& result : results) {
+    auto series = [&](const std::string& name, const std::vector<double>& values,
+                      const char* units) {
+      file.write(result.scenario + "/" + name, values, units);
+    };
+    const char* unit = result.controls_deflection ? "m" : "N";
+    series("calibration_offsets", {result.deflection_offset, result.force_offset}, "m, N");
+    series("estimation_error", result.estimation_errors, unit);
+    std::vector<double> step_times, rise_times, reached, frequencies, magnitude_db, phase;
+    for (const auto& rise : result.rises) {
+      step_times.push_back(rise.step_time), rise_times.push_back(rise.rise_time),
+          reached.push_back(rise.reached);
+    }
+    for (const auto& point : result.response) {
+      frequencies.push_back(point.frequency), magnitude_db.push_back(point.magnitude_db),
+          phase.push_back(point.phase);
+    }
+    if (!result.rises.empty()) {
+      series("step_time", step_times, "s");
+      series("rise_time", rise_times, "s");
+      series("reached", reached, "1");
+    }
+    if (!result.response.empty()) {
+      series("frequency", frequencies, "Hz");
+      series("magnitude", magnitude_db, "dB");
+      series("phase", phase, "rad");
+      series("bandwidth", {result.bandwidth.value_or(std::nan(""))}, "Hz");
+    }
+  }
+  file.commit();
+}
+
+}  // namespace tcpmsim

@@ -1,0 +1,231 @@
+// tcpmsim command line: run and validate scenarios.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "analysis/coil_fit_command.h"
+#include "analysis/control_tasks_command.h"
+#include "analysis/spring_forces_command.h"
+#include "cli/progress.h"
+#include "sim/config/config_error.h"
+#include "sim/run.h"
+#include "sim/scenario.h"
+#include "tcpmsim/version.h"
+
+namespace {
+
+// Exit codes, documented in the README.
+enum ExitCode : int {
+  kSuccess = 0,
+  kSimulationFailed = 1,
+  kUsageError = 2,
+  kConfigError = 3,
+  kOutputError = 4,
+  kInternalError = 5,
+};
+
+struct Options {
+  std::string config;
+  std::string output;
+  std::vector<std::string> overrides;
+  bool quiet = false;
+  tcpmsim::analysis::CoilFitOptions coil_fit;
+  tcpmsim::SpringForcesOptions spring_forces;
+  tcpmsim::ControlTasksOptions control_tasks;
+};
+
+tcpmsim::Scenario load(const Options& options) {
+  return tcpmsim::load_scenario(options.config, options.overrides,
+                                std::make_shared<tcpmsim::UnitSystem>());
+}
+
+int validate(const Options& options) {
+  tcpmsim::Scenario scenario = load(options);
+  std::cout << options.config << ": valid scenario '" << scenario.settings.name << "', "
+            << scenario.settings.duration << " s, " << scenario.system->state_size() << " states, "
+            << scenario.system->channels().size() << " output channels\n";
+  for (const auto& state : scenario.system->states()) {
+    std::cout << "  state  " << state.name << " [" << state.unit << "]\n";
+  }
+  for (const auto& channel : scenario.system->channels()) {
+    std::cout << "  output /" << channel.group << "/" << channel.name << " [" << channel.unit
+              << "]\n";
+  }
+  return kSuccess;
+}
+
+int run(const Options& options) {
+  tcpmsim::Scenario scenario = load(options);
+  const std::string output =
+      options.output.empty() ? "results/" + scenario.settings.name + ".h5" : options.output;
+  tcpmsim::RunOutcome outcome;
+  {
+    tcpmsim::ProgressLine progress(stderr, scenario.settings.duration);
+    auto report = [&](double time, long steps) {
+      if (!options.quiet) progress.update(time, steps);
+    };
+    outcome = tcpmsim::run_scenario(scenario, output, report);
+  }
+  const auto& stats = outcome.statistics;
+  if (!outcome.succeeded) {
+    std::cerr << "tcpmsim: simulation failed: " << outcome.failure << "\n"
+              << "tcpmsim: the record up to the failure is in " << outcome.output_path << "\n";
+    return kSimulationFailed;
+  }
+  if (!options.quiet) {
+    std::cout << "wrote " << outcome.output_path << ": " << stats.output_samples << " samples; "
+              << stats.steps << " steps, " << stats.rhs_evaluations << " RHS evaluations, "
+              << stats.jacobian_evaluations << " Jacobians, " << stats.error_test_failures
+              << " error-test failures, " << stats.nonlinear_convergence_failures
+              << " convergence failures, " << stats.segments << " segments; "
+              << outcome.wall_seconds << " s wall\n";
+  }
+  return kSuccess;
+}
+
+// Thesis ch. 2-3 on the measured coil-spring data (analysis/coil_fit_command.h).
+int coil_fit(const Options& options) {
+  tcpmsim::analysis::run_coil_fit(options.coil_fit, std::cout,
+                                  std::make_shared<tcpmsim::UnitSystem>());
+  return kSuccess;
+}
+
+// Thesis ch. 4: Table 4.2 and the modal checks (analysis/spring_forces_command.h).
+int spring_forces(const Options& options) {
+  tcpmsim::run_spring_forces_command(options.spring_forces, std::cout,
+                                     std::make_shared<tcpmsim::UnitSystem>());
+  return kSuccess;
+}
+
+// Thesis ch. 7: calibrated control tasks against section 7.4
+// (analysis/control_tasks_command.h).
+int control_tasks(const Options& options) {
+  tcpmsim::run_control_tasks_command(options.control_tasks, std::cout,
+                                     std::make_shared<tcpmsim::UnitSystem>());
+  return kSuccess;
+}
+
+int guarded(int (*command)(const Options&), const Options& options) {
+  try {
+    return command(options);
+  } catch (const tcpmsim::ConfigError& error) {
+    std::cerr << error.what() << "\n";
+    return kConfigError;
+  } catch (const tcpmsim::UnitError& error) {
+    std::cerr << "tcpmsim: " << error.what() << "\n";
+    return kConfigError;
+  } catch (const std::runtime_error& error) {
+    std::cerr << "tcpmsim: " << error.what() << "\n";
+    return kOutputError;
+  } catch (const std::exception& error) {
+    std::cerr << "tcpmsim: internal error: " << error.what() << "\n";
+    return kInternalError;
+  }
+}
+
+void add_common(CLI::App& command, Options& options) {
+  command.add_option("config", options.config, "Scenario file (YAML)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command
+      .add_option("--set", options.overrides,
+                  "Override a value, e.g. --set 'muscle.mechanics.k1=12 N/m' (repeatable)")
+      ->type_name("KEY.PATH=VALUE");
+}
+
+// A thesis analysis: a sub-command over a list of input files, writing one HDF5 file and
+// printing its tables unless quiet.
+struct AnalysisInputs {
+  const char* name;
+  const char* description;
+  std::vector<std::string>& files;
+};
+
+CLI::App* add_analysis(CLI::App& app, const char* name, const char* description,
+                       AnalysisInputs inputs, std::string& output, const char* default_output,
+                       bool& quiet) {
+  CLI::App* command = app.add_subcommand(name, description);
+  command->add_option(inputs.name, inputs.files, inputs.description)
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("-o,--output", output,
+                      std::string("Output file (default: ") + default_output + ")");
+  command->add_flag("-q,--quiet", quiet, "No tables");
+  return command;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "tcpmsim: simulator of Joule-heated twisted and coiled polymer muscles and "
+      "self-sensing coil actuators"};
+  app.set_version_flag(
+      "--version", std::string("tcpmsim ") + tcpmsim::kVersion + " (" + tcpmsim::kGitCommit + ")");
+  app.require_subcommand(1);
+  Options options;
+
+  CLI::App* run_command = app.add_subcommand("run", "Simulate a scenario and write an HDF5 record");
+  add_common(*run_command, options);
+  run_command->add_option("-o,--output", options.output,
+                          "Output file (default: results/<scenario name>.h5)");
+  run_command->add_flag("-q,--quiet", options.quiet, "No progress line or summary");
+
+  CLI::App* validate_command =
+      app.add_subcommand("validate", "Check a scenario file and list its states and outputs");
+  add_common(*validate_command, options);
+
+  CLI::App* coil_fit_command =
+      add_analysis(app, "coil-fit",
+                   "Thesis Tables 2.2/2.3 and the ch. 3 comparison from measured coil-spring data",
+                   {"springs", "Spring files (YAML)", options.coil_fit.spring_files},
+                   options.coil_fit.output, "results/coil_fit.h5", options.coil_fit.quiet);
+  options.coil_fit.data_directory = "data/coil-spring-inductance";
+  coil_fit_command
+      ->add_option("--data", options.coil_fit.data_directory,
+                   "Directory of the sequence files <name>.csv (default: the thesis' data, "
+                   "data/coil-spring-inductance)")
+      ->check(CLI::ExistingDirectory);
+
+  CLI::App* spring_forces_command = add_analysis(
+      app, "spring-forces",
+      "Thesis Table 4.2: force sensing on an oscillating coil spring, and modal checks",
+      {"configs", "Chapter-4 scenarios (YAML)", options.spring_forces.configs},
+      options.spring_forces.output, "results/spring_forces.h5", options.spring_forces.quiet);
+  spring_forces_command
+      ->add_option("--window", options.spring_forces.window, "Analysed tail of each run [s]")
+      ->check(CLI::PositiveNumber);
+  spring_forces_command
+      ->add_option("--threads", options.spring_forces.threads, "Simulations in parallel")
+      ->check(CLI::Range(1, 64));
+
+  CLI::App* control_tasks_command = add_analysis(
+      app, "control-tasks",
+      "Thesis ch. 7: calibrate, run the control tasks, compare with section 7.4",
+      {"configs", "Control-task scenarios (YAML)", options.control_tasks.configs},
+      options.control_tasks.output, "results/control_tasks.h5", options.control_tasks.quiet);
+  control_tasks_command
+      ->add_option("--set", options.control_tasks.settings.overrides,
+                   "Override a value in every run, e.g. --set drive.fidelity=switched")
+      ->type_name("KEY.PATH=VALUE");
+  control_tasks_command->add_flag(
+      "--no-calibration", [&](std::int64_t) { options.control_tasks.settings.calibrate = false; },
+      "Skip the calibration runs of section 7.3.4");
+  control_tasks_command
+      ->add_option("--threads", options.control_tasks.settings.threads, "Tasks in parallel")
+      ->check(CLI::Range(1, 64));
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    const int code = app.exit(error);
+    return code == 0 ? kSuccess : kUsageError;
+  }
+  if (run_command->parsed()) return guarded(run, options);
+  if (coil_fit_command->parsed()) return guarded(coil_fit, options);
+  if (spring_forces_command->parsed()) return guarded(spring_forces, options);
+  if (control_tasks_command->parsed()) return guarded(control_tasks, options);
+  return guarded(validate, options);
+}
