@@ -8,7 +8,8 @@
 #include <stdexcept>
 #include <unsupported/Eigen/MatrixFunctions>
 
-#include "controllers/self_sensing_estimator.h"
+#include "models/laws/sls.h"
+#include "models/laws/thermal_force.h"
 
 namespace tcpmsim {
 
@@ -299,21 +300,21 @@ SampledLoop deflection_control_loop(const PidGains& gains, double heating_gain, 
   if (filters.moving_average < 1 || filters.median < 1 || !(filters.low_pass_cutoff > 0.0) ||
       !(filters.measurement_delay >= 0.0))
     throw std::invalid_argument("deflection loop: invalid filter settings");
-  const double k1 = mechanics.k1, k2 = mechanics.k2, c = mechanics.damping;
-  if (!(k1 > 0.0 && k2 >= 0.0 && c > 0.0))
+  if (!(mechanics.k1 > 0.0 && mechanics.k2 >= 0.0 && mechanics.damping > 0.0))
     throw std::invalid_argument("deflection loop: need k1 > 0, k2 >= 0, c > 0");
-  // Muscle at constant force, states (F_T, x_d): (7.1), the dashpot c dx_d/dt = k2 (x - x_d)
-  // and x = (-F_T + k2 x_d) / (k1 + k2) from (7.5), in deviations.
+  // Muscle at constant force, states (F_T, x_d): (7.1) and the SLS at imposed force, in
+  // deviations (models/laws).
+  const sls::ForceModeLinearisation muscle = sls::linearise_at_force(mechanics);
   Eigen::Matrix3d augmented = Eigen::Matrix3d::Zero();
-  augmented(0, 0) = -cooling_rate;
-  augmented(1, 0) = -k2 / (c * (k1 + k2));
-  augmented(1, 1) = -k1 * k2 / (c * (k1 + k2));
-  augmented(0, 2) = heating_gain;
+  augmented(0, 0) = -cooling_rate;  // (7.1): d F_T / d F_T
+  augmented(1, 0) = muscle.dashpot_from_thermal;
+  augmented(1, 1) = muscle.dashpot_from_dashpot;
+  augmented(0, 2) = heating_gain;  // (7.1): d F_T / d P
   // exp([[A, B], [0, 0]] T) = [[Phi, Gamma], [0, 1]]: the zero-order-hold discretisation.
   const Eigen::Matrix3d exponential = (augmented * period).exp();
   const Eigen::Matrix2d phi = exponential.topLeftCorner<2, 2>();
   const Eigen::Vector2d gamma = exponential.topRightCorner<2, 1>();
-  const Eigen::RowVector2d output(-1.0 / (k1 + k2), k2 / (k1 + k2));
+  const Eigen::RowVector2d output(muscle.deflection_from_thermal, muscle.deflection_from_dashpot);
   const double pole = std::exp(-2.0 * kPi * filters.low_pass_cutoff * period);
   // The median as a delay of (N - 1)/2 samples, plus the measurement's own delay.
   const double median_delay = 0.5 * (filters.median - 1) + filters.measurement_delay;
@@ -335,7 +336,8 @@ SampledLoop deflection_control_loop(const PidGains& gains, double heating_gain, 
 
 double equilibrium_power(double force, double deflection, double heating_gain, double cooling_rate,
                          const SlsParameters& mechanics) {
-  return cooling_rate / heating_gain * (force - mechanics.k1 * deflection - mechanics.force_offset);
+  return thermal_force::equilibrium_power(heating_gain, cooling_rate,
+                                          sls::rest_thermal_force(mechanics, force, deflection));
 }
 
 std::optional<LimitCycle> LimitCyclePrediction::oscillation() const {

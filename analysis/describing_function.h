@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "controllers/pid_controller.h"
-#include "models/sls_mechanics.h"
+#include "models/laws/sls.h"
 
 namespace tcpmsim {
 

@@ -2,7 +2,7 @@
 
 #include <memory>
 
-#include "controllers/pwm_supply.h"
+#include "models/laws/pwm_supply.h"
 #include "signals/signal_config.h"
 #include "sim/component.h"
 #include "sim/random_stream.h"

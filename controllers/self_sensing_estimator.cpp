@@ -19,24 +19,6 @@ double checked_period(double period) {
 }
 }  // namespace
 
-DiscreteThermalForce::DiscreteThermalForce(double heating_gain, double cooling_rate, double period)
-    : decay_(std::exp(-cooling_rate * period)),
-      // (kappa_P / kappa_c)(1 - exp(-kappa_c T)), with expm1 so that slow cooling keeps its
-      // digits (the limit kappa_c -> 0 is kappa_P T).
-      gain_(cooling_rate > 0.0 ? -heating_gain / cooling_rate * std::expm1(-cooling_rate * period)
-                               : heating_gain * period) {
-  if (!(cooling_rate >= 0.0)) throw std::invalid_argument("thermal force: kappa_c must be >= 0");
-}
-
-DiscreteSls::DiscreteSls(const SlsParameters& parameters, double period) : k1_(parameters.k1) {
-  if (!(parameters.damping > 0.0)) throw std::invalid_argument("SLS: damping must be positive");
-  const double beta = parameters.k2 / parameters.damping;  // relaxation rate k2/c
-  const double one_minus_decay = -std::expm1(-beta * period);
-  decay_ = 1.0 - one_minus_decay;
-  deflection_gain_ = one_minus_decay * parameters.k1;
-  velocity_gain_ = decay_ * parameters.k1 * period + one_minus_decay * parameters.damping;
-}
-
 SelfSensingEstimator::SelfSensingEstimator(std::string group,
                                            SelfSensingEstimatorParameters parameters, double period)
     : SampledComponent(std::move(group), "self_sensing_estimator", checked_period(period),

@@ -5,70 +5,14 @@
 #include <vector>
 
 #include "controllers/discrete_filters.h"
-#include "models/impedance_laws.h"
+#include "models/laws/impedance.h"
+#include "models/laws/sls.h"
+#include "models/laws/thermal_force.h"
 #include "models/sls_mechanics.h"
 #include "sim/config/config_node.h"
 #include "sim/sampled_component.h"
 
 namespace tcpmsim {
-
-// (7.1) discretised exactly for a power held constant over each sample interval (the Muscle
-// Drive holds its duty cycle for a whole PWM period). Integrating dF_T/dt = kappa_P P - kappa_c F_T
-// over one period T with P constant:
-//     F_T[k] = phi F_T[k-1] + gamma P[k-1],   phi = exp(-kappa_c T),
-//     gamma = (kappa_P / kappa_c) (1 - phi),
-// where P[k-1] is the power applied over [t_{k-1}, t_k). The estimator reads the controller's
-// held command at t_k, which is exactly that power.
-class DiscreteThermalForce {
- public:
-  DiscreteThermalForce(double heating_gain, double cooling_rate, double period);
-  void reset(double thermal_force) { value_ = thermal_force; }
-  double advance(double power) { return value_ = decay_ * value_ + gain_ * power; }
-  double value() const { return value_; }
-  double decay() const { return decay_; }  // phi
-  double gain() const { return gain_; }    // gamma [N/W]
-
- private:
-  double decay_;
-  double gain_;
-  double value_ = 0.0;
-};
-
-// The SLS (7.6), dF_l/dt = -(k2/c) F_l + (k1 k2/c) x + (k1 + k2) dx/dt, driven by the sampled
-// deflection estimate x[k] and its backward difference v[k] = (x[k] - x[k-1]) / T, discretised
-// exactly for the velocity held over each sample interval (t_{k-1}, t_k].
-//
-// Derivation. x and dx/dt cannot both be held constant over an interval unless v = 0. Holding
-// the velocity makes the deflection its integral, the straight line from x[k-1] to x[k]. With
-// w = F_l - (k1 + k2) x, (7.6) loses its derivative term: dw/dt = -beta w - beta k2 x, with
-// beta = k2/c. Integrating over the interval with x(t_{k-1} + s) = x[k-1] + v s:
-//     w[k] = phi w[k-1] - k2 (1 - phi) x[k-1] - k2 v (T - (1 - phi) / beta),   phi = exp(-beta T),
-// and back in F_l, with x[k-1] = x[k] - v T:
-//     F_l[k] = phi F_l[k-1] + (1 - phi) k1 x[k] + (phi k1 T + (1 - phi) c) v[k].
-// This is exact for any deflection that is piecewise linear between sample instants (a ramp
-// gives F_l = k1 x + c v exactly), and the backward difference is the thesis' velocity
-// estimate. The alternative of holding x[k] and v[k] as two independent inputs (a plain
-// zero-order-hold c2d of (7.6) with input [x, dx/dt]) mixes a constant deflection with a
-// non-zero velocity; it lags a steady ramp by k1 v T / 2 (0.27 mN at 1 mm/s, 20 Hz) and misses
-// the plant at the sample instants by that much.
-// reset() starts the branch at rest (dashpot relaxed): F_l = k1 x, as the plant's SlsMechanics.
-class DiscreteSls {
- public:
-  DiscreteSls(const SlsParameters& parameters, double period);
-  void reset(double deflection) { value_ = k1_ * deflection; }
-  double advance(double deflection, double velocity) {
-    return value_ = decay_ * value_ + deflection_gain_ * deflection + velocity_gain_ * velocity;
-  }
-  double value() const { return value_; }
-  double decay() const { return decay_; }  // phi
-
- private:
-  double k1_;
-  double decay_;
-  double deflection_gain_;  // (1 - phi) k1 [N/m]
-  double velocity_gain_;    // phi k1 T + (1 - phi) c [N s/m]
-  double value_ = 0.0;
-};
 
 // The estimator's own model of the muscle (plant and model stay separate objects).
 struct SelfSensingEstimatorParameters {

@@ -25,11 +25,8 @@ std::vector<InputDeclaration> SlsMechanics::inputs() const {
 
 double SlsMechanics::deflection(const Evaluation& evaluation) const {
   if (drive_ == Drive::deflection) return input(evaluation, kImposed);
-  // Solve (7.5) for x: F = (k1 + k2) x - k2 x_d + F_T + phi_0.
-  const double dashpot = state(evaluation, 0);
-  return (input(evaluation, kImposed) - input(evaluation, kThermalForce) -
-          parameters_.force_offset + parameters_.k2 * dashpot) /
-         (parameters_.k1 + parameters_.k2);
+  return sls::deflection_at_force(parameters_, input(evaluation, kImposed),
+                                  input(evaluation, kThermalForce), state(evaluation, 0));
 }
 
 void SlsMechanics::initialize(const Evaluation& evaluation, std::span<double> own_state) const {
@@ -37,24 +34,23 @@ void SlsMechanics::initialize(const Evaluation& evaluation, std::span<double> ow
   if (drive_ == Drive::deflection) {
     own_state[0] = input(evaluation, kImposed);
   } else {
-    own_state[0] = (input(evaluation, kImposed) - input(evaluation, kThermalForce) -
-                    parameters_.force_offset) /
-                   parameters_.k1;
+    own_state[0] = sls::rest_deflection(parameters_, input(evaluation, kImposed),
+                                        input(evaluation, kThermalForce));
   }
 }
 
 void SlsMechanics::compute_outputs(const Evaluation& evaluation) const {
   const double x = deflection(evaluation);
-  const double elastic = parameters_.k1 * x + parameters_.k2 * (x - state(evaluation, 0));
+  const double elastic = sls::elastic_force(parameters_, x, state(evaluation, 0));
   set_output(evaluation, kDeflection, x);
   set_output(evaluation, kElasticForce, elastic);
   set_output(evaluation, kForce,
-             elastic + input(evaluation, kThermalForce) + parameters_.force_offset);  // (7.5)
+             sls::total_force(parameters_, elastic, input(evaluation, kThermalForce)));  // (7.5)
 }
 
 void SlsMechanics::compute_derivatives(const Evaluation& evaluation, double* derivatives) const {
   const double x = deflection(evaluation);
-  set_derivative(derivatives, 0, parameters_.k2 / parameters_.damping * (x - state(evaluation, 0)));
+  set_derivative(derivatives, 0, sls::dashpot_rate(parameters_, x, state(evaluation, 0)));
 }
 
 }  // namespace tcpmsim

@@ -2,32 +2,17 @@
 
 #include <memory>
 
+#include "models/laws/sls.h"
 #include "sim/component.h"
 #include "sim/config/config_node.h"
 
 namespace tcpmsim {
 
-// The muscle's mechanics: a standard linear solid (SLS) branch in parallel with the thermal
-// force and an offset,  F = F_l + F_T + phi_0   (7.5).
-//
-// The SLS is a spring k1 in parallel with a Maxwell arm (spring k2 in series with a dashpot
-// c). Its state is the dashpot extension x_d:
-//     c dx_d/dt = k2 (x - x_d),     F_l = k1 x + k2 (x - x_d).
-// Differentiating F_l gives the thesis' form
-//     dF_l/dt = -(k2/c) F_l + (k1 k2 / c) x + (k1 + k2) dx/dt   (7.6)
-// without needing dx/dt, so a step in imposed deflection is exact (an instantaneous elastic
-// response of stiffness k1 + k2). Relaxation after a deflection step has tau = c/k2; creep
-// under a force step has tau = c (k1 + k2) / (k1 k2).
+// The muscle's mechanics as a component: the SLS of (7.5)-(7.6) (models/laws/sls.h) with the
+// dashpot extension x_d as its state.
 //
 // Causality follows the load: with an imposed deflection (or a mass) x is an input and F an
 // output; with an imposed force F is the input and x follows algebraically from (7.5).
-struct SlsParameters {
-  double k1 = 0.0;            // [N/m]
-  double k2 = 0.0;            // [N/m]
-  double damping = 0.0;       // c [N s/m]
-  double force_offset = 0.0;  // phi_0 [N]
-};
-
 class SlsMechanics final : public Component {
  public:
   enum class Drive { deflection, force };

@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "models/impedance_laws.h"
+#include "models/laws/impedance.h"
 
 namespace tcpmsim {
 

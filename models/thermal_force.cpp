@@ -18,7 +18,8 @@ std::unique_ptr<PhysicalThermalForce> PhysicalThermalForce::from_config(const st
 
 void PhysicalThermalForce::compute_outputs(const Evaluation& evaluation) const {
   set_output(evaluation, kThermalForce,
-             force_per_kelvin_ * (input(evaluation, kTemperature) - reference_temperature_));
+             thermal_force::physical(force_per_kelvin_, input(evaluation, kTemperature),
+                                     reference_temperature_));
 }
 
 ReducedThermalForce::ReducedThermalForce(std::string group,
@@ -55,7 +56,8 @@ void ReducedThermalForce::compute_outputs(const Evaluation& evaluation) const {
   set_output(evaluation, kThermalForce, thermal_force);
   if (parameters_.force_per_kelvin) {
     set_output(evaluation, kTemperature,
-               parameters_.ambient_temperature + thermal_force / *parameters_.force_per_kelvin);
+               thermal_force::temperature(parameters_.ambient_temperature, thermal_force,
+                                          *parameters_.force_per_kelvin));
   }
 }
 
@@ -63,19 +65,8 @@ void ReducedThermalForce::compute_derivatives(const Evaluation& evaluation,
                                               double* derivatives) const {
   // (7.1)
   set_derivative(derivatives, 0,
-                 parameters_.heating_gain * input(evaluation, kPower) -
-                     parameters_.cooling_rate * state(evaluation, 0));
-}
-
-ReducedThermalForceParameters reduce_thermal_model(double heat_capacity, double conductance,
-                                                   double force_per_kelvin,
-                                                   double ambient_temperature) {
-  ReducedThermalForceParameters p;
-  p.heating_gain = force_per_kelvin / heat_capacity;  // kappa_P = phi_T / C
-  p.cooling_rate = conductance / heat_capacity;       // kappa_c = hA / C
-  p.ambient_temperature = ambient_temperature;
-  p.force_per_kelvin = force_per_kelvin;
-  return p;
+                 thermal_force::rate(parameters_.heating_gain, parameters_.cooling_rate,
+                                     state(evaluation, 0), input(evaluation, kPower)));
 }
 
 }  // namespace tcpmsim

@@ -3,21 +3,13 @@
 #include <memory>
 #include <optional>
 
+#include "models/laws/thermal_force.h"
 #include "sim/component.h"
 #include "sim/config/config_node.h"
 
 namespace tcpmsim {
 
-// The thermal contribution to the muscle force, F_T in (7.5), in two forms.
-//
-// Physical form: F_T = phi_T (T - T_ref), with T from a thermal node.
-//
-// Reduced form (7.1): dF_T/dt = kappa_P P - kappa_c F_T, the thesis' identified model. It is
-// the physical form with a linear thermal node C dT/dt = P - hA (T - T_amb) and
-// T_ref = T_amb, rewritten in F_T:
-//     kappa_c = hA / C,   kappa_P = phi_T / C   (and F_T = phi_T (T - T_amb)).
-// Only the ratios are identifiable; given phi_T the reduced form can still report
-// T = T_amb + F_T / phi_T.
+// The thermal force F_T of (7.5) as components, in the two forms of models/laws/thermal_force.h.
 
 class PhysicalThermalForce final : public Component {
  public:
@@ -37,14 +29,6 @@ class PhysicalThermalForce final : public Component {
  private:
   double force_per_kelvin_;       // phi_T [N/K]
   double reference_temperature_;  // T_ref [K]
-};
-
-struct ReducedThermalForceParameters {
-  double heating_gain = 0.0;               // kappa_P [N/J]
-  double cooling_rate = 0.0;               // kappa_c [1/s]
-  double ambient_temperature = 0.0;        // [K], for the reported temperature
-  std::optional<double> force_per_kelvin;  // phi_T [N/K], enables the temperature output
-  double initial_thermal_force = 0.0;      // F_T(t0) [N]
 };
 
 class ReducedThermalForce final : public Component {
@@ -67,10 +51,5 @@ class ReducedThermalForce final : public Component {
  private:
   ReducedThermalForceParameters parameters_;
 };
-
-// The mapping between the forms, documented above.
-ReducedThermalForceParameters reduce_thermal_model(double heat_capacity, double conductance,
-                                                   double force_per_kelvin,
-                                                   double ambient_temperature);
 
 }  // namespace tcpmsim

@@ -103,7 +103,7 @@ MuscleSummary build_muscle(System& system, const ConfigNode& muscle, SlsMechanic
   const ConfigNode resistance = muscle.at("resistance");
   const ConfigNode inductance = muscle.at("inductance");
   auto& coil = system.add(std::make_unique<CoilImpedance>(
-      kMuscle, InductanceLaw::from_config(inductance), ResistanceLaw::from_config(resistance)));
+      kMuscle, read_inductance_law(inductance), read_resistance_law(resistance)));
   system.connect(coil, "deflection", "muscle.deflection");
   if (coil.needs_temperature()) {
     if (!summary.has_temperature) {

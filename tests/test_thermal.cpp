@@ -119,7 +119,7 @@ TEST_CASE(
 }
 
 TEST_CASE("The thermal-model mapping gives kappa_P = phi_T/C and kappa_c = hA/C") {
-  const auto reduced = reduce_thermal_model(kCapacity, kConductance, 0.002, kAmbient);
+  const auto reduced = thermal_force::reduce(kCapacity, kConductance, 0.002, kAmbient);
   CHECK(reduced.heating_gain == Approx(0.002 / kCapacity));
   CHECK(reduced.cooling_rate == Approx(kConductance / kCapacity));
   CHECK(reduced.ambient_temperature == kAmbient);

@@ -2,7 +2,7 @@
 
 #include <span>
 
-#include "models/impedance_laws.h"
+#include "models/laws/impedance.h"
 
 namespace tcpmsim::inductance {
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "models/impedance_laws.h"
+#include "models/laws/impedance.h"
 #include "sim/component.h"
 #include "sim/signal.h"
 

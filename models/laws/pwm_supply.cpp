@@ -1,4 +1,4 @@
-#include "controllers/pwm_supply.h"
+#include "models/laws/pwm_supply.h"
 
 namespace tcpmsim {
 

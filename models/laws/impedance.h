@@ -1,7 +1,8 @@
 #pragma once
 
-#include "sim/config/config_node.h"
-
+// The heater coil's impedance laws (thesis ch. 6-7): small value types with no dependence on
+// components or configuration. The plant's CoilImpedance, the estimator's inversion (7.4) and
+// the static self-sensing of (6.6)-(6.8) use them.
 namespace tcpmsim {
 
 // Fitted inductance of a TCPM's heater coil (thesis (6.3); (7.3) with lambda_x for l0):
@@ -20,7 +21,6 @@ struct InductanceLaw {
   double operator()(double deflection, double temperature) const;
   // Inverse at a known temperature; at lambda_T = 0 this is (7.4).
   double deflection(double inductance, double temperature) const;
-  static InductanceLaw from_config(const ConfigNode& node);
 };
 
 // Heater resistance (6.5):  R(x, T) = rho_x x + rho_T (T - T_ref) + rho_0.
@@ -35,9 +35,6 @@ struct ResistanceLaw {
   double operator()(double deflection, double temperature) const;
   static ResistanceLaw thermal(double resistance, double temperature_coefficient,
                                double reference_temperature, double strain_coefficient = 0.0);
-  // A scalar is a constant resistance (constantan); a mapping has form linear (6.5) or
-  // thermal (6.4).
-  static ResistanceLaw from_config(const ConfigNode& node);
 };
 
 // Static force law (6.9): F = phi_x x + phi_T (T - T_ref) + phi_0.
