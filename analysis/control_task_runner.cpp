@@ -31,9 +31,19 @@ constexpr const char* kDeflectionControl =
     "derivative_time: 0.625 s}, power_limits: [0.10 W, 3.12 W]}";
 
 template <typename T>
-T& required(const Scenario& scenario, const std::string& what) {
-  if (auto* found = scenario.system->find<T>()) return *found;
+const T& required(const Scenario& scenario, const std::string& what) {
+  if (const auto* found = scenario.system->find<T>()) return *found;
   throw std::invalid_argument("the scenario has no " + what);
+}
+
+// The estimator's calibration offsets (7.3.4), as run parameters.
+constexpr const char* kDeflectionOffset = "estimator.calibration.deflection_offset";
+constexpr const char* kForceOffset = "estimator.calibration.force_offset";
+
+// Adds `offset` to the parameter at `path`: the measured offsets add to those the scenario
+// configures (calibration_offset).
+void add_to(Context& context, const char* path, double offset) {
+  context.set_parameter(path, context.parameter(path) + offset);
 }
 
 // The three runs of one task, loaded up front: udunits2's parser is not thread-safe.
@@ -68,9 +78,10 @@ PreparedTask prepare(const std::string& config, const ControlTaskSettings& setti
   return prepared;
 }
 
-MemoryRecord simulate(Scenario& scenario, SolverStatistics* statistics = nullptr) {
+MemoryRecord simulate(const Scenario& scenario, Context& context,
+                      SolverStatistics* statistics = nullptr) {
   MemoryRecord record(*scenario.system);
-  const auto totals = integrate(scenario, record);
+  const auto totals = integrate(scenario, context, record);
   if (statistics) *statistics = totals;
   return record;
 }
@@ -92,29 +103,29 @@ ControlTaskResult run_task(PreparedTask& prepared, bool calibrate) {
   const auto started = std::chrono::steady_clock::now();
   ControlTaskResult result;
   result.scenario = prepared.task.settings.name;
-  auto& controller = required<PidController>(prepared.task, "controller");
-  auto& estimator = required<SelfSensingEstimator>(prepared.task, "self-sensing estimator");
+  const auto& controller = required<PidController>(prepared.task, "controller");
+  required<SelfSensingEstimator>(prepared.task, "self-sensing estimator");
   result.controls_deflection = controller.target() == PidController::Target::deflection;
+  Context task = prepared.task.make_context();
   if (calibrate) {
-    const auto deflection = simulate(prepared.deflection_calibration);
+    Context hold_deflection = prepared.deflection_calibration.make_context();
+    const auto deflection = simulate(prepared.deflection_calibration, hold_deflection);
     result.deflection_offset =
         offset_over(deflection, "muscle/deflection", "estimator/deflection", kCalibrationSettle,
                     kCalibrationSettle + kDeflectionAverage);
-    // The measured offsets add to those the scenario configures (calibration_offset).
-    auto& force_estimator =
-        required<SelfSensingEstimator>(prepared.force_calibration, "self-sensing estimator");
-    force_estimator.set_deflection_offset(force_estimator.deflection_offset() +
-                                          result.deflection_offset);
-    const auto force = simulate(prepared.force_calibration);
+    Context hold_force = prepared.force_calibration.make_context();
+    add_to(hold_force, kDeflectionOffset, result.deflection_offset);
+    const auto force = simulate(prepared.force_calibration, hold_force);
     result.force_offset = offset_over(force, "muscle/force", "estimator/force", kCalibrationSettle,
                                       kCalibrationSettle + kForceAverage);
-    estimator.set_deflection_offset(estimator.deflection_offset() + result.deflection_offset);
-    estimator.set_force_offset(estimator.force_offset() + result.force_offset);
+    add_to(task, kDeflectionOffset, result.deflection_offset);
+    add_to(task, kForceOffset, result.force_offset);
   }
-  const auto record = simulate(prepared.task, &result.statistics);
+  const auto record = simulate(prepared.task, task, &result.statistics);
 
   // The task starts at the reference's first change; before it the muscle settles.
-  const Signal& reference = *controller.signal_records().front().signal;
+  const Signal& reference =
+      task.signal(*prepared.task.system->signal_slot(controller.group(), "reference"));
   const double start = reference.next_breakpoint_after(0.0);
   const std::string truth = result.controls_deflection ? "muscle/deflection" : "muscle/force";
   const std::string estimate =

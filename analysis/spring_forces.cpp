@@ -83,8 +83,8 @@ PreparedRun prepare(const std::string& config, double window,
   if (!chain || !sensor) {
     throw std::invalid_argument(config + ": not a coil-spring scenario with an inductance sensor");
   }
-  run.nominal_force = chain->parameters().stiffness * (sensor->parameters().longest_length -
-                                                       chain->parameters().rest_length);  // (4.14)
+  run.nominal_force = chain->defaults().stiffness * (sensor->defaults().longest_length -
+                                                     chain->defaults().rest_length);  // (4.14)
   run.load_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return run;

@@ -25,7 +25,7 @@ void print_modes(const std::vector<std::string>& configs, std::ostream& out,
   for (const auto& config : configs) {
     const Scenario scenario = load_scenario(config, {}, units);
     if (const auto* chain = scenario.system->find<const CoilSpringChain>()) {
-      const auto& p = chain->parameters();
+      const auto& p = chain->defaults();
       if (!seen.insert({p.windings, p.mass, p.stiffness, p.damping_ratio}).second) continue;
       std::snprintf(line, sizeof line, "\nSpring N = %d, m = %g g, k = %g N/m (from %s)\n",
                     p.windings, p.mass * 1e3, p.stiffness, scenario.settings.name.c_str());

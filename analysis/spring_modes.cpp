@@ -8,7 +8,7 @@ namespace tcpmsim {
 std::vector<double> clamped_eigenfrequencies(const CoilSpringChain& chain) {
   // M = (m/N) I, so the eigenproblem K v = w^2 M v is symmetric after dividing by m/N.
   const Eigen::MatrixXd stiffness = chain.stiffness_matrix();
-  const double winding_mass = chain.parameters().mass / chain.parameters().windings;
+  const double winding_mass = chain.defaults().mass / chain.defaults().windings;
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(stiffness / winding_mass,
                                                         Eigen::EigenvaluesOnly);
   std::vector<double> frequencies;
@@ -20,8 +20,8 @@ std::vector<double> clamped_eigenfrequencies(const CoilSpringChain& chain) {
 std::complex<double> force_transmissibility(const CoilSpringChain& chain, double omega) {
   // (K + i omega C - omega^2 M) X = k_0 e_0 U for a unit end motion U at the first end;
   // C = beta K with beta the chain's stiffness-proportional damping time.
-  const int n = chain.parameters().windings;
-  const double beta = 2.0 * chain.parameters().damping_ratio / chain.first_mode_frequency();
+  const int n = chain.defaults().windings;
+  const double beta = 2.0 * chain.defaults().damping_ratio / chain.first_mode_frequency();
   const std::complex<double> element_factor(1.0, omega * beta);
   Eigen::MatrixXcd system = chain.stiffness_matrix().cast<std::complex<double>>() * element_factor -
                             chain.mass_matrix().cast<std::complex<double>>() * (omega * omega);

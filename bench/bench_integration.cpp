@@ -34,7 +34,8 @@ int main(int argc, char** argv) {
     tcpmsim::Scenario scenario = tcpmsim::load_scenario(argv[1], overrides, units);
     KeepEverything sink;
     sink.values.reserve(1 << 20);
-    tcpmsim::Integrator integrator(*scenario.system, scenario.solver);
+    tcpmsim::Context context = scenario.make_context();
+    tcpmsim::Integrator integrator(*scenario.system, context, scenario.solver);
     const auto started = std::chrono::steady_clock::now();
     statistics =
         integrator.run(0.0, scenario.settings.duration,

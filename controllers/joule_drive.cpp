@@ -21,43 +21,60 @@ Command command_of(JouleDriveParameters::Mode mode) {
   }
   return {"power", "W"};
 }
+
+PwmSupply supply_of(const JouleDriveParameters& p) {
+  return {p.supply_voltage, p.series_resistance};
+}
 }  // namespace
 
-JouleDrive::JouleDrive(std::string group, JouleDriveParameters parameters,
-                       std::unique_ptr<Signal> command)
-    : Component(std::move(group), "joule_drive"),
-      parameters_(parameters),
-      command_(std::move(command)) {}
+std::string joule_command_problem(JouleDriveParameters::Mode mode, const Signal& command,
+                                  double duration) {
+  const auto [low, high] = command.range(0.0, duration);
+  if (low < 0.0) {
+    return std::string("the ") + command_of(mode).name + " signal goes negative (" +
+           std::to_string(low) + ")";
+  }
+  if (mode == JouleDriveParameters::Mode::duty && high > 1.0) {
+    return "the duty cycle reaches " + std::to_string(high) + "; it must stay in [0, 1]";
+  }
+  return {};
+}
+
+JouleDrive::JouleDrive(std::string group, JouleDriveParameters defaults,
+                       ParameterBindings<JouleDriveParameters> bindings,
+                       std::unique_ptr<Signal> command, double command_duration)
+    : ParametricComponent(std::move(group), "joule_drive", defaults, std::move(bindings)),
+      command_(std::move(command)),
+      command_duration_(command_duration) {}
 
 std::unique_ptr<JouleDrive> JouleDrive::from_config(const std::string& group,
                                                     const ConfigNode& node,
                                                     const SignalContext& signals) {
   using Mode = JouleDriveParameters::Mode;
+  using P = JouleDriveParameters;
   node.declare(
       {"model", "mode", "supply_voltage", "series_resistance", "power", "duty", "current"});
-  JouleDriveParameters p;
+  P p;
+  ParameterBindings<P> bind;
   const std::string mode = node.choice("mode", {"power", "duty", "current"});
   p.mode = mode == "duty" ? Mode::duty : mode == "current" ? Mode::current : Mode::power;
   if (p.mode == Mode::duty) {
-    p.supply_voltage = node.quantity("supply_voltage", "V", ValueCheck::positive());
-    p.series_resistance = node.quantity("series_resistance", "ohm", ValueCheck::non_negative());
+    bind.quantity(node, "supply_voltage", "V", ValueCheck::positive(), p,
+                  bind.member(&P::supply_voltage));
+    bind.quantity(node, "series_resistance", "ohm", ValueCheck::non_negative(), p,
+                  bind.member(&P::series_resistance));
   }
   const ConfigNode command_node = node.at(command_of(p.mode).name);
   auto command = read_signal(command_node, command_of(p.mode).unit, signals);
-  const auto [low, high] = command->range(0.0, signals.duration);
-  if (low < 0.0) {
-    command_node.fail(std::string("the ") + command_of(p.mode).name + " signal goes negative (" +
-                      std::to_string(low) + ")");
-  }
-  if (p.mode == Mode::duty && high > 1.0) {
-    command_node.fail("the duty cycle reaches " + std::to_string(high) +
-                      "; it must stay in [0, 1]");
-  }
-  return std::make_unique<JouleDrive>(group, p, std::move(command));
+  if (const std::string problem = joule_command_problem(p.mode, *command, signals.duration);
+      !problem.empty())
+    command_node.fail(problem);
+  return std::make_unique<JouleDrive>(group, p, std::move(bind), std::move(command),
+                                      signals.duration);
 }
 
 std::vector<OutputDeclaration> JouleDrive::outputs() const {
-  switch (parameters_.mode) {
+  switch (defaults().mode) {
     case JouleDriveParameters::Mode::duty:
       return {{"power", "W"}, {"duty", "1"}, {"current", "A"}};
     case JouleDriveParameters::Mode::current:
@@ -73,25 +90,29 @@ std::vector<InputDeclaration> JouleDrive::inputs() const {
   return {};
 }
 
-double JouleDrive::power_from_duty(double duty, double heater_resistance) const {
-  return supply().power(duty, heater_resistance);  // (7.2)
+std::vector<SignalDeclaration> JouleDrive::signals() const {
+  const Command command = command_of(defaults().mode);
+  return {{command.name, command.unit, command_.get()}};
 }
 
-PwmSupply JouleDrive::supply() const {
-  return {parameters_.supply_voltage, parameters_.series_resistance};
+std::string JouleDrive::check_parameters(const RunSetup& setup) const {
+  const std::string problem =
+      joule_command_problem(defaults().mode, signal(setup.context, 0), command_duration_);
+  return problem.empty() ? problem : std::string(command_of(defaults().mode).name) + ": " + problem;
 }
 
 void JouleDrive::compute_outputs(const Evaluation& evaluation) const {
-  const double command = command_->value(evaluation.signal_time);
-  switch (parameters_.mode) {
+  const auto& p = run_parameters(evaluation);
+  const double command = signal(evaluation, 0).value(evaluation.signal_time);
+  switch (p.mode) {
     case JouleDriveParameters::Mode::power:
       set_output(evaluation, kPower, command);
       return;
     case JouleDriveParameters::Mode::duty: {
       const double heater = input(evaluation, kHeaterResistance);
-      set_output(evaluation, kPower, power_from_duty(command, heater));
+      set_output(evaluation, kPower, supply_of(p).power(command, heater));  // (7.2)
       set_output(evaluation, kCommand, command);
-      set_output(evaluation, kCurrent, command * supply().on_current(heater));
+      set_output(evaluation, kCurrent, command * supply_of(p).on_current(heater));
       return;
     }
     case JouleDriveParameters::Mode::current:
@@ -101,12 +122,8 @@ void JouleDrive::compute_outputs(const Evaluation& evaluation) const {
   }
 }
 
-double JouleDrive::next_breakpoint_after(double t) const {
-  return command_->next_breakpoint_after(t);
-}
-
-std::vector<Component::SignalRecord> JouleDrive::signal_records() const {
-  return {{command_of(parameters_.mode).name, command_of(parameters_.mode).unit, command_.get()}};
+double JouleDrive::next_breakpoint_after(const Evaluation& evaluation) const {
+  return signal(evaluation, 0).next_breakpoint_after(evaluation.time);
 }
 
 }  // namespace tcpmsim

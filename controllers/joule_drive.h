@@ -4,7 +4,7 @@
 
 #include "models/laws/pwm_supply.h"
 #include "signals/signal_config.h"
-#include "sim/component.h"
+#include "sim/parametric_component.h"
 
 namespace tcpmsim {
 
@@ -25,30 +25,35 @@ struct JouleDriveParameters {
   double series_resistance = 0.0;  // R_s = R_b - R_m [ohm]
 };
 
-class JouleDrive final : public Component {
+class JouleDrive final : public ParametricComponent<JouleDriveParameters> {
  public:
   enum Input { kHeaterResistance };
   enum Output { kPower, kCommand, kCurrent };
 
-  JouleDrive(std::string group, JouleDriveParameters parameters, std::unique_ptr<Signal> command);
+  // `command_duration`: the time over which the command is checked against its limits.
+  JouleDrive(std::string group, JouleDriveParameters defaults,
+             ParameterBindings<JouleDriveParameters> bindings, std::unique_ptr<Signal> command,
+             double command_duration);
   static std::unique_ptr<JouleDrive> from_config(const std::string& group, const ConfigNode& node,
                                                  const SignalContext& signals);
 
   std::vector<OutputDeclaration> outputs() const override;
   std::vector<InputDeclaration> inputs() const override;
+  std::vector<SignalDeclaration> signals() const override;
+  std::string check_parameters(const RunSetup& setup) const override;
   void compute_outputs(const Evaluation& evaluation) const override;
-  double next_breakpoint_after(double t) const override;
-  std::vector<SignalRecord> signal_records() const override;
+  double next_breakpoint_after(const Evaluation& evaluation) const override;
 
-  bool needs_resistance() const { return parameters_.mode != JouleDriveParameters::Mode::power; }
-  const JouleDriveParameters& parameters() const { return parameters_; }
-  // (7.2), generalised as above.
-  double power_from_duty(double duty, double heater_resistance) const;
+  bool needs_resistance() const { return defaults().mode != JouleDriveParameters::Mode::power; }
 
  private:
-  PwmSupply supply() const;
-  JouleDriveParameters parameters_;
   std::unique_ptr<Signal> command_;
+  double command_duration_;
 };
+
+// What is wrong with a command signal over [0, duration] for `mode` (negative, or a duty above
+// 1), or "".
+std::string joule_command_problem(JouleDriveParameters::Mode mode, const Signal& command,
+                                  double duration);
 
 }  // namespace tcpmsim

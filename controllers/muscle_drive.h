@@ -29,6 +29,9 @@ namespace tcpmsim {
 // Fidelity `averaged` replaces the current by its period average (P by the law above) and
 // computes t_d from L and R at each period's start; `switched` integrates the current (time
 // constant ~0.1 us against a 50 ms period), stopping at every switching edge.
+//
+// The power asked for comes from a signal ("power"), or, without one, from a controller through
+// the input "power_command".
 struct MuscleDriveParameters {
   enum class Fidelity { averaged, switched };
   Fidelity fidelity = Fidelity::averaged;
@@ -41,7 +44,8 @@ struct MuscleDriveParameters {
   double timing_noise = 0.0;         // standard deviation of the decay time [s]
   double spike_probability = 0.0;    // per measurement
   double spike_size = 0.0;           // added to the decay time, with random sign [s]
-  std::uint64_t seed = 0;
+  std::uint64_t seed = 0;            // of the measurement artefacts' random stream
+  std::string stream = "muscle_drive.measurement";  // that stream's purpose
 };
 
 class MuscleDrive final : public Component {
@@ -51,51 +55,47 @@ class MuscleDrive final : public Component {
 
   // With `power_demand` the drive follows that signal [W]; without, it takes a "power_command"
   // input from a controller.
-  MuscleDrive(std::string group, MuscleDriveParameters parameters,
-              std::unique_ptr<Signal> power_demand);
+  MuscleDrive(std::string group, MuscleDriveParameters defaults,
+              ParameterBindings<MuscleDriveParameters> bindings,
+              std::unique_ptr<Signal> power_demand, double demand_duration = 0.0);
   static std::unique_ptr<MuscleDrive> from_config(const std::string& group, const ConfigNode& node,
                                                   const SignalContext& signals, bool controlled);
 
   std::vector<StateDeclaration> states() const override;
   std::vector<OutputDeclaration> outputs() const override;
   std::vector<InputDeclaration> inputs() const override;
+  std::vector<ParameterDeclaration> parameters() const override;
+  std::vector<SignalDeclaration> signals() const override;
+  std::unique_ptr<RunState> create_run_state(const RunSetup& setup) const override;
+  std::string check_parameters(const RunSetup& setup) const override;
   void initialize(const Evaluation& evaluation, std::span<double> own_state) const override;
   void compute_outputs(const Evaluation& evaluation) const override;
   void compute_derivatives(const Evaluation& evaluation, double* derivatives) const override;
-  double next_breakpoint_after(double t) const override;
-  void at_breakpoint(const Evaluation& evaluation) override;
-  void sense(const Evaluation& evaluation) override;
+  double next_breakpoint_after(const Evaluation& evaluation) const override;
+  void at_breakpoint(const Evaluation& evaluation) const override;
+  void sense(const Evaluation& evaluation) const override;
   SamplingStage sampling_stage() const override { return SamplingStage::actuator; }
   int event_count() const override;
   int event_direction(int) const override { return -1; }
   void event_functions(const Evaluation& evaluation, double* values) const override;
-  void at_event(int index, const Evaluation& evaluation) override;
-  void adapt_tolerances(std::span<double> absolute, std::span<double> relative) const override;
-  std::vector<SignalRecord> signal_records() const override;
+  void at_event(int index, const Evaluation& evaluation) const override;
+  void adapt_tolerances(const Evaluation& evaluation, std::span<double> absolute,
+                        std::span<double> relative) const override;
 
-  const MuscleDriveParameters& parameters() const { return parameters_; }
+  const MuscleDriveParameters& defaults() const { return defaults_; }
+  bool controlled() const { return !power_demand_; }
   // The decay time the measurement would see for inductance L and heater resistance R_m [s].
-  double decay_time(double inductance, double heater_resistance) const;
-  long measurements() const { return measurements_; }
+  static double decay_time(const MuscleDriveParameters& p, double inductance,
+                           double heater_resistance);
+  // How many L* measurements a run has made so far.
+  long measurements(const Context& context) const;
 
  private:
-  double period() const { return 1.0 / parameters_.pwm_frequency; }
-  PwmSupply supply() const;
-  double last_on_current_ = 0.0;
-  double measured(double decay_time);  // quantisation, noise, spikes
-
-  MuscleDriveParameters parameters_;
+  struct Run;
+  MuscleDriveParameters defaults_;
+  ParameterBindings<MuscleDriveParameters> bindings_;
   std::unique_ptr<Signal> power_demand_;
-  RandomStream random_;
-  // Held from the latest period start / switching edge.
-  double on_fraction_ = 0.0;  // D^2 = P / P_full, in [0, 1]
-  double demand_ = 0.0;       // the power asked for this period [W]
-  double on_until_ = 0.0;     // end of this period's on-phase [s]
-  bool on_ = false;
-  double switched_off_at_ = -1.0;
-  bool awaiting_decay_ = false;
-  double measure_ = 0.0;  // L* [s]
-  long measurements_ = 0;
+  double demand_duration_;
 };
 
 }  // namespace tcpmsim

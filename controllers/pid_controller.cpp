@@ -83,21 +83,42 @@ void DiscretePid::reset() {
   previous_estimate_ = 0.0;
 }
 
+// A run's law (with its integral) and what the controller holds between samples.
+struct PidController::Run final : RunState {
+  Run(const PidSettings& settings, double period)
+      : law(settings, period),
+        command(idle_power(settings)),
+        demand(idle_power(settings)),
+        held_reference(std::numeric_limits<double>::quiet_NaN()) {}
+  void hold_idle() { command = demand = idle_power(law.settings()); }
+  DiscretePid law;
+  long last_index = 0;
+  bool sampled = false;
+  double command;
+  double demand;
+  double held_reference;
+};
+
 PidController::PidController(std::string group, Target target, PidSettings settings,
                              std::unique_ptr<Signal> reference, double period)
+    : PidController(std::move(group), target, settings, std::move(reference), period, {}) {}
+
+PidController::PidController(std::string group, Target target, PidSettings settings,
+                             std::unique_ptr<Signal> reference, double period,
+                             ParameterBindings<PidSettings> bindings)
     : SampledComponent(std::move(group), "pid_controller", period, SamplingStage::controller),
       target_(target),
-      law_(settings, period),
-      reference_(std::move(reference)),
-      command_(idle_power(settings)),
-      demand_(idle_power(settings)),
-      held_reference_(std::numeric_limits<double>::quiet_NaN()) {
+      defaults_(settings),
+      bindings_(std::move(bindings)),
+      reference_(std::move(reference)) {
+  DiscretePid check(defaults_, period);  // throws for impossible settings
   if (!reference_) throw std::invalid_argument("PID: no reference signal");
 }
 
 std::unique_ptr<PidController> PidController::from_config(const std::string& group,
                                                           const ConfigNode& node, double period,
                                                           const SignalContext& signals) {
+  using P = PidSettings;
   node.declare({"target", "reference", "gains", "power_limits", "anti_windup", "derivative_on",
                 "initial_power"});
   const Target target = node.choice("target", {"deflection", "force"}) == "force"
@@ -106,17 +127,28 @@ std::unique_ptr<PidController> PidController::from_config(const std::string& gro
   const char* unit = target == Target::force ? "N" : "m";
   auto reference = read_signal(node.at("reference"), unit, signals);
 
-  PidSettings s;
+  P s;
+  ParameterBindings<P> bind;
   const ConfigNode gains = node.at("gains");
   gains.declare({"proportional", "integral_time", "derivative_time"});
-  s.gains.proportional = gains.quantity("proportional", target == Target::force ? "W/N" : "W/m");
-  if (s.gains.proportional == 0.0)
-    gains.at("proportional").fail("expected a non-zero gain ((7.8) divides by it)");
-  s.gains.integral_time = gains.quantity("integral_time", "s", ValueCheck::positive());
-  s.gains.derivative_time =
-      gains.quantity_or("derivative_time", "s", 0.0, ValueCheck::non_negative());
+  bind.quantity(
+      gains, "proportional", target == Target::force ? "W/N" : "W/m", {}, s,
+      [](P& v) -> double& { return v.gains.proportional; },
+      [](double value) {
+        return value == 0.0 ? std::string("expected a non-zero gain ((7.8) divides by it)")
+                            : std::string();
+      });
+  bind.quantity(gains, "integral_time", "s", ValueCheck::positive(), s,
+                [](P& v) -> double& { return v.gains.integral_time; });
+  bind.quantity_or(gains, "derivative_time", "s", 0.0, ValueCheck::non_negative(), s,
+                   [](P& v) -> double& { return v.gains.derivative_time; });
+  const ConfigNode limits = node.at("power_limits");
   std::tie(s.power_min, s.power_max) =
       node.interval("power_limits", "W", ValueCheck::non_negative());
+  bind.bind(limits.parameter_path() + "[0]", "W", ValueCheck::non_negative(),
+            bind.member(&P::power_min));
+  bind.bind(limits.parameter_path() + "[1]", "W", ValueCheck::non_negative(),
+            bind.member(&P::power_max));
   s.anti_windup = node.boolean_or("anti_windup", true);
   s.derivative = node.choice_or("derivative_on", {"error", "measurement"}, "error") == "measurement"
                      ? PidSettings::Derivative::measurement
@@ -126,8 +158,10 @@ std::unique_ptr<PidController> PidController::from_config(const std::string& gro
     if (power < s.power_min || power > s.power_max)
       initial->fail("expected a power within power_limits");
     s.initial_power = power;
+    bind.bind(initial->parameter_path(), "W", {}, [](P& v) -> double& { return *v.initial_power; });
   }
-  return std::make_unique<PidController>(group, target, s, std::move(reference), period);
+  return std::make_unique<PidController>(group, target, s, std::move(reference), period,
+                                         std::move(bind));
 }
 
 std::vector<OutputDeclaration> PidController::outputs() const {
@@ -136,46 +170,67 @@ std::vector<OutputDeclaration> PidController::outputs() const {
           {"reference", target_ == Target::force ? "N" : "m"}};
 }
 
-void PidController::compute_outputs(const Evaluation& evaluation) const {
-  set_output(evaluation, kPowerCommand, command_);
-  set_output(evaluation, kPowerDemand, demand_);
-  set_output(evaluation, kReference, held_reference_);
+std::vector<ParameterDeclaration> PidController::parameters() const {
+  auto declared = SampledComponent::parameters();
+  for (auto& parameter : bindings_.declarations(defaults_))
+    declared.push_back(std::move(parameter));
+  return declared;
 }
 
-std::vector<Component::SignalRecord> PidController::signal_records() const {
+std::vector<SignalDeclaration> PidController::signals() const {
   return {{"reference", target_ == Target::force ? "N" : "m", reference_.get()}};
 }
 
-double PidController::reference_at(double time) const {
-  // A reference step within the engine's "same instant" margin is taken to be at the sample.
-  return reference_->value(time + time_margin(time));
+std::unique_ptr<RunState> PidController::create_run_state(const RunSetup& setup) const {
+  return std::make_unique<Run>(bindings_.assign(defaults_, own_parameters(setup)),
+                               setup.parameters[0]);
 }
 
-double PidController::reference_slope_at(double time) const {
-  return reference_->slope(time + time_margin(time));
-}
-
-void PidController::hold_idle() {
-  command_ = demand_ = idle_power(law_.settings());
-}
-
-void PidController::sample(const Evaluation& evaluation, long index) {
-  if (!sampled_ || index != last_index_ + 1) {
-    law_.reset();
-    hold_idle();
+std::string PidController::check_parameters(const RunSetup& setup) const {
+  try {
+    DiscretePid check(bindings_.assign(defaults_, own_parameters(setup)), setup.parameters[0]);
+  } catch (const std::exception& error) {
+    return error.what();
   }
-  sampled_ = true;
-  last_index_ = index;
+  return {};
+}
+
+void PidController::compute_outputs(const Evaluation& evaluation) const {
+  const Run& run = run_state<Run>(evaluation);
+  set_output(evaluation, kPowerCommand, run.command);
+  set_output(evaluation, kPowerDemand, run.demand);
+  set_output(evaluation, kReference, run.held_reference);
+}
+
+double PidController::reference_at(const Signal& reference, double time) {
+  // A reference step within the engine's "same instant" margin is taken to be at the sample.
+  return reference.value(time + time_margin(time));
+}
+
+double PidController::reference_slope_at(const Signal& reference, double time) {
+  return reference.slope(time + time_margin(time));
+}
+
+void PidController::sample(const Evaluation& evaluation, long index) const {
+  Run& run = mutable_run_state<Run>(evaluation);
+  if (!run.sampled || index != run.last_index + 1) {
+    run.law.reset();
+    run.hold_idle();
+  }
+  run.sampled = true;
+  run.last_index = index;
   const double now = evaluation.time;
-  held_reference_ = reference_at(now);
+  const Signal& reference = signal(evaluation, 0);
+  run.held_reference = reference_at(reference, now);
   const double estimate = input(evaluation, kEstimate);
   if (!std::isfinite(estimate)) {
-    hold_idle();
+    run.hold_idle();
     return;
   }
-  const auto step = law_.update(held_reference_, reference_slope_at(now), estimate);
-  command_ = step.command;
-  demand_ = step.demand;
+  const auto step =
+      run.law.update(run.held_reference, reference_slope_at(reference, now), estimate);
+  run.command = step.command;
+  run.demand = step.demand;
 }
 
 }  // namespace tcpmsim

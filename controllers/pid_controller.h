@@ -7,6 +7,7 @@
 
 #include "signals/signal_config.h"
 #include "sim/config/config_node.h"
+#include "sim/parameters.h"
 #include "sim/sampled_component.h"
 
 namespace tcpmsim {
@@ -106,8 +107,12 @@ class PidController final : public SampledComponent {
   enum Input { kEstimate };
   enum Output { kPowerCommand, kPowerDemand, kReference };
 
+  // A fixed controller (no parameters for a context to change but the sample period).
   PidController(std::string group, Target target, PidSettings settings,
                 std::unique_ptr<Signal> reference, double period);
+  PidController(std::string group, Target target, PidSettings settings,
+                std::unique_ptr<Signal> reference, double period,
+                ParameterBindings<PidSettings> bindings);
   // Keys: target (deflection | force), reference (a signal in m or N), gains {proportional
   // (W/m or W/N: "W/mm" converts), integral_time, derivative_time (optional, 0 s)},
   // power_limits [P_min, P_max], and optional anti_windup (true), derivative_on
@@ -118,30 +123,29 @@ class PidController final : public SampledComponent {
 
   std::vector<OutputDeclaration> outputs() const override;
   std::vector<InputDeclaration> inputs() const override { return {{"estimate", false, true}}; }
+  std::vector<ParameterDeclaration> parameters() const override;
+  std::vector<SignalDeclaration> signals() const override;
+  std::unique_ptr<RunState> create_run_state(const RunSetup& setup) const override;
+  std::string check_parameters(const RunSetup& setup) const override;
   void compute_outputs(const Evaluation& evaluation) const override;
-  std::vector<SignalRecord> signal_records() const override;
 
   Target target() const { return target_; }
-  const DiscretePid& law() const { return law_; }
-  const Signal& reference() const { return *reference_; }
-  // r and dr/dt as the sample at t uses them (right of a step at t).
-  double reference_at(double time) const;
-  double reference_slope_at(double time) const;
+  const PidSettings& defaults() const { return defaults_; }
+  const Signal& reference() const { return *reference_; }  // as built
+  // r and dr/dt as the sample at t uses them (right of a step at t), of the reference as built.
+  double reference_at(double time) const { return reference_at(*reference_, time); }
+  static double reference_at(const Signal& reference, double time);
+  static double reference_slope_at(const Signal& reference, double time);
 
  protected:
-  void sample(const Evaluation& evaluation, long index) override;
+  void sample(const Evaluation& evaluation, long index) const override;
 
  private:
-  void hold_idle();
-
+  struct Run;
   Target target_;
-  DiscretePid law_;
+  PidSettings defaults_;
+  ParameterBindings<PidSettings> bindings_;
   std::unique_ptr<Signal> reference_;
-  long last_index_ = 0;
-  bool sampled_ = false;
-  double command_;
-  double demand_;
-  double held_reference_;
 };
 
 }  // namespace tcpmsim

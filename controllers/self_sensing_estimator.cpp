@@ -4,6 +4,9 @@
 #include <limits>
 #include <stdexcept>
 
+#include "models/sls_mechanics.h"
+#include "sim/context.h"
+
 namespace tcpmsim {
 
 namespace {
@@ -19,11 +22,10 @@ double checked_period(double period) {
 }
 }  // namespace
 
-SelfSensingEstimator::SelfSensingEstimator(std::string group,
-                                           SelfSensingEstimatorParameters parameters, double period)
-    : SampledComponent(std::move(group), "self_sensing_estimator", checked_period(period),
-                       SamplingStage::estimator),
-      parameters_(parameters),
+SelfSensingEstimation::SelfSensingEstimation(const SelfSensingEstimatorParameters& parameters,
+                                             double period)
+    : parameters_(parameters),
+      period_(checked_period(period)),
       moving_average_(parameters.moving_average_length),
       median_(parameters.median_length),
       low_pass_(parameters.low_pass_cutoff, period),
@@ -36,18 +38,45 @@ SelfSensingEstimator::SelfSensingEstimator(std::string group,
   restart();
 }
 
+// A run: its estimation, and the last sample's index to tell a new run from the next sample.
+struct SelfSensingEstimator::Run final : RunState {
+  Run(const SelfSensingEstimatorParameters& parameters, double period)
+      : estimation(parameters, period) {}
+  SelfSensingEstimation estimation;
+  long last_index = 0;
+};
+
+SelfSensingEstimator::SelfSensingEstimator(std::string group,
+                                           SelfSensingEstimatorParameters defaults, double period)
+    : SelfSensingEstimator(std::move(group), defaults, period, {}) {}
+
+SelfSensingEstimator::SelfSensingEstimator(
+    std::string group, SelfSensingEstimatorParameters defaults, double period,
+    ParameterBindings<SelfSensingEstimatorParameters> bindings)
+    : SampledComponent(std::move(group), "self_sensing_estimator", checked_period(period),
+                       SamplingStage::estimator),
+      defaults_(defaults),
+      bindings_(std::move(bindings)) {
+  SelfSensingEstimation check(defaults_, period);  // throws for an impossible model
+}
+
 std::unique_ptr<SelfSensingEstimator> SelfSensingEstimator::from_config(const std::string& group,
                                                                         const ConfigNode& node,
                                                                         double period) {
+  using P = SelfSensingEstimatorParameters;
   node.declare({"inductance", "filters", "thermal", "mechanics", "calibration"});
-  SelfSensingEstimatorParameters p;
+  P p;
+  ParameterBindings<P> bind;
 
   const ConfigNode inductance = node.at("inductance");
   inductance.declare({"lambda_l", "lambda_x", "lambda_0"});
   p.inductance.is_measure = true;
-  p.inductance.lambda_l = inductance.quantity("lambda_l", "s*m", ValueCheck::positive());
-  p.inductance.lambda_x = inductance.quantity("lambda_x", "m", ValueCheck::positive());
-  p.inductance.lambda_0 = inductance.quantity("lambda_0", "s", ValueCheck::non_negative());
+  bind.quantity(inductance, "lambda_l", "s*m", ValueCheck::positive(), p,
+                [](P& v) -> double& { return v.inductance.lambda_l; });
+  bind.quantity(inductance, "lambda_x", "m", ValueCheck::positive(), p,
+                [](P& v) -> double& { return v.inductance.lambda_x; });
+  bind.quantity(inductance, "lambda_0", "s", ValueCheck::non_negative(), p,
+                [](P& v) -> double& { return v.inductance.lambda_0; });
 
   if (const auto filters = node.find("filters")) {
     filters->declare({"moving_average", "median", "low_pass_cutoff"});
@@ -55,24 +84,39 @@ std::unique_ptr<SelfSensingEstimator> SelfSensingEstimator::from_config(const st
         "moving_average", p.moving_average_length, ValueCheck::between(1, kMaximumWindow)));
     p.median_length = static_cast<int>(
         filters->integer_or("median", p.median_length, ValueCheck::between(1, kMaximumWindow)));
-    p.low_pass_cutoff =
-        filters->quantity_or("low_pass_cutoff", "Hz", p.low_pass_cutoff, ValueCheck::positive());
+    bind.quantity_or(*filters, "low_pass_cutoff", "Hz", p.low_pass_cutoff, ValueCheck::positive(),
+                     p, bind.member(&P::low_pass_cutoff));
+  } else {
+    bind.bind(node.parameter_path("filters.low_pass_cutoff"), "Hz", ValueCheck::positive(),
+              bind.member(&P::low_pass_cutoff));
   }
 
   const ConfigNode thermal = node.at("thermal");
   thermal.declare({"kappa_P", "kappa_c", "initial_thermal_force"});
-  p.heating_gain = thermal.quantity("kappa_P", "N/J", ValueCheck::positive());
-  p.cooling_rate = thermal.quantity("kappa_c", "1/s", ValueCheck::positive());
-  p.initial_thermal_force = thermal.quantity_or("initial_thermal_force", "N", 0.0);
+  bind.quantity(thermal, "kappa_P", "N/J", ValueCheck::positive(), p,
+                bind.member(&P::heating_gain));
+  bind.quantity(thermal, "kappa_c", "1/s", ValueCheck::positive(), p,
+                bind.member(&P::cooling_rate));
+  bind.quantity_or(thermal, "initial_thermal_force", "N", 0.0, {}, p,
+                   bind.member(&P::initial_thermal_force));
 
-  p.mechanics = SlsMechanics::parameters_from_config(node.at("mechanics"));
+  ParameterBindings<SlsParameters> mechanics;
+  p.mechanics = SlsMechanics::read(node.at("mechanics"), &mechanics);
+  bind.nest(mechanics,
+            std::function<SlsParameters&(P&)>([](P& v) -> SlsParameters& { return v.mechanics; }));
 
   if (const auto calibration = node.find("calibration")) {
     calibration->declare({"deflection_offset", "force_offset"});
-    p.deflection_offset = calibration->quantity_or("deflection_offset", "m", 0.0);
-    p.force_offset = calibration->quantity_or("force_offset", "N", 0.0);
+    bind.quantity_or(*calibration, "deflection_offset", "m", 0.0, {}, p,
+                     bind.member(&P::deflection_offset));
+    bind.quantity_or(*calibration, "force_offset", "N", 0.0, {}, p, bind.member(&P::force_offset));
+  } else {
+    bind.bind(node.parameter_path("calibration.deflection_offset"), "m", {},
+              bind.member(&P::deflection_offset));
+    bind.bind(node.parameter_path("calibration.force_offset"), "N", {},
+              bind.member(&P::force_offset));
   }
-  return std::make_unique<SelfSensingEstimator>(group, p, period);
+  return std::make_unique<SelfSensingEstimator>(group, p, period, std::move(bind));
 }
 
 std::vector<OutputDeclaration> SelfSensingEstimator::outputs() const {
@@ -87,29 +131,57 @@ std::vector<InputDeclaration> SelfSensingEstimator::inputs() const {
   return {{"inductance_measure", false, true}, {"power_command", false, true}};
 }
 
+std::vector<ParameterDeclaration> SelfSensingEstimator::parameters() const {
+  auto declared = SampledComponent::parameters();
+  for (auto& parameter : bindings_.declarations(defaults_))
+    declared.push_back(std::move(parameter));
+  return declared;
+}
+
+std::unique_ptr<RunState> SelfSensingEstimator::create_run_state(const RunSetup& setup) const {
+  return std::make_unique<Run>(bindings_.assign(defaults_, own_parameters(setup)),
+                               setup.parameters[0]);
+}
+
+std::string SelfSensingEstimator::check_parameters(const RunSetup& setup) const {
+  try {
+    SelfSensingEstimation check(bindings_.assign(defaults_, own_parameters(setup)),
+                                setup.parameters[0]);
+  } catch (const std::exception& error) {
+    return error.what();
+  }
+  return {};
+}
+
+const SelfSensingEstimation& SelfSensingEstimator::estimation(const Context& context) const {
+  return context.run_state<Run>(*this).estimation;
+}
+
 void SelfSensingEstimator::compute_outputs(const Evaluation& evaluation) const {
-  set_output(evaluation, kDeflection, estimate_.deflection);
-  set_output(evaluation, kVelocity, estimate_.velocity);
-  set_output(evaluation, kForce, estimate_.force);
-  set_output(evaluation, kThermalForce, estimate_.thermal_force);
-  set_output(evaluation, kRawDeflection, estimate_.raw_deflection);
+  const SelfSensingEstimate& estimate = run_state<Run>(evaluation).estimation.estimate();
+  set_output(evaluation, kDeflection, estimate.deflection);
+  set_output(evaluation, kVelocity, estimate.velocity);
+  set_output(evaluation, kForce, estimate.force);
+  set_output(evaluation, kThermalForce, estimate.thermal_force);
+  set_output(evaluation, kRawDeflection, estimate.raw_deflection);
 }
 
-void SelfSensingEstimator::sample(const Evaluation& evaluation, long index) {
-  if (!started_ || index != last_index_ + 1) restart();
-  last_index_ = index;
-  process(input(evaluation, kInductanceMeasure), input(evaluation, kPowerCommand));
+void SelfSensingEstimator::sample(const Evaluation& evaluation, long index) const {
+  Run& run = mutable_run_state<Run>(evaluation);
+  if (!run.estimation.started() || index != run.last_index + 1) run.estimation.restart();
+  run.last_index = index;
+  run.estimation.process(input(evaluation, kInductanceMeasure), input(evaluation, kPowerCommand));
 }
 
-double SelfSensingEstimator::model_deflection(double inductance_measure) const {
+double SelfSensingEstimation::model_deflection(double inductance_measure) const {
   return parameters_.inductance.deflection(inductance_measure,
                                            parameters_.inductance.reference_temperature);  // (7.4)
 }
 
-const SelfSensingEstimate& SelfSensingEstimator::process(double inductance_measure,
-                                                         double power_command) {
+const SelfSensingEstimate& SelfSensingEstimation::process(double inductance_measure,
+                                                          double power_command) {
   if (!std::isfinite(power_command)) {
-    throw std::domain_error(group() + "/self_sensing_estimator: the power command is not finite");
+    throw std::domain_error("self-sensing estimator: the power command is not finite");
   }
   // F_T: the first sample sets the initial value; later ones integrate the power held since the
   // previous sample (7.1).
@@ -144,14 +216,14 @@ const SelfSensingEstimate& SelfSensingEstimator::process(double inductance_measu
   } else if (has_deflection_) {
     const double previous = model_deflection_;
     model_deflection_ = low_pass_.push(model_raw_deflection_);
-    velocity_ = (model_deflection_ - previous) / period();
+    velocity_ = (model_deflection_ - previous) / period_;
     sls_.advance(model_deflection_ + parameters_.deflection_offset, velocity_);
   }
   publish();
   return estimate_;
 }
 
-void SelfSensingEstimator::publish() {
+void SelfSensingEstimation::publish() {
   estimate_.thermal_force = thermal_.value();
   if (!has_deflection_) {
     estimate_.deflection = estimate_.velocity = estimate_.force = estimate_.raw_deflection =
@@ -165,26 +237,25 @@ void SelfSensingEstimator::publish() {
                     parameters_.force_offset;  // (7.5)
 }
 
-void SelfSensingEstimator::restart() {
+void SelfSensingEstimation::restart() {
   moving_average_.reset();
   median_.reset();
   low_pass_.reset();
   thermal_.reset(parameters_.initial_thermal_force);
   started_ = false;
   has_deflection_ = false;
-  last_index_ = 0;
   model_raw_deflection_ = model_deflection_ = velocity_ = 0.0;
   rejected_measurements_ = out_of_domain_samples_ = 0;
   publish();
 }
 
-void SelfSensingEstimator::set_deflection_offset(double offset) {
+void SelfSensingEstimation::set_deflection_offset(double offset) {
   if (!std::isfinite(offset)) throw std::invalid_argument("deflection offset must be finite");
   parameters_.deflection_offset = offset;
   publish();
 }
 
-void SelfSensingEstimator::set_force_offset(double offset) {
+void SelfSensingEstimation::set_force_offset(double offset) {
   if (!std::isfinite(offset)) throw std::invalid_argument("force offset must be finite");
   parameters_.force_offset = offset;
   publish();

@@ -8,8 +8,8 @@
 #include "models/laws/impedance.h"
 #include "models/laws/sls.h"
 #include "models/laws/thermal_force.h"
-#include "models/sls_mechanics.h"
 #include "sim/config/config_node.h"
+#include "sim/parameters.h"
 #include "sim/sampled_component.h"
 
 namespace tcpmsim {
@@ -38,6 +38,54 @@ struct SelfSensingEstimate {
   double force;           // F^ = F_l + F_T + phi_0 + force offset (7.5) [N]
   double thermal_force;   // F_T^ [N]
   double raw_deflection;  // (7.4) of the median-filtered L*, calibrated, before the low-pass [m]
+};
+
+// One run of the estimator below as a value type: its filters, its discretised models and the
+// estimate it holds. The component runs one per run context; tests and analyses run it on
+// their own samples.
+class SelfSensingEstimation {
+ public:
+  SelfSensingEstimation(const SelfSensingEstimatorParameters& parameters, double period);
+
+  // One sample: the L* measured over the period that just ended and the power commanded at the
+  // previous sample.
+  const SelfSensingEstimate& process(double inductance_measure, double power_command);
+  // Forgets everything but the parameters and offsets; the next sample is a first one.
+  void restart();
+  bool started() const { return started_; }
+
+  const SelfSensingEstimate& estimate() const { return estimate_; }
+  const SelfSensingEstimatorParameters& parameters() const { return parameters_; }
+  double period() const { return period_; }
+  void set_deflection_offset(double offset);
+  void set_force_offset(double offset);
+  double deflection_offset() const { return parameters_.deflection_offset; }
+  double force_offset() const { return parameters_.force_offset; }
+  // (7.4) of the estimator's own law, without filters or calibration.
+  double model_deflection(double inductance_measure) const;
+
+  long rejected_measurements() const { return rejected_measurements_; }  // not finite or <= 0
+  long out_of_domain_samples() const { return out_of_domain_samples_; }  // median <= lambda_0
+
+ private:
+  void publish();
+
+  SelfSensingEstimatorParameters parameters_;
+  double period_;
+  MovingAverage moving_average_;
+  RunningMedian median_;
+  FirstOrderLowPass low_pass_;
+  DiscreteThermalForce thermal_;
+  DiscreteSls sls_;
+
+  bool started_ = false;               // a first sample has been taken
+  bool has_deflection_ = false;        // a usable L* has arrived since the start
+  double model_raw_deflection_ = 0.0;  // (7.4), uncalibrated, held over bad samples
+  double model_deflection_ = 0.0;      // low-passed, uncalibrated
+  double velocity_ = 0.0;
+  long rejected_measurements_ = 0;
+  long out_of_domain_samples_ = 0;
+  SelfSensingEstimate estimate_;
 };
 
 // Self-sensing of deflection and force (thesis 7.2.2-7.2.3, Fig. 7.2), sampled with the
@@ -75,57 +123,36 @@ class SelfSensingEstimator final : public SampledComponent {
   enum Input { kInductanceMeasure, kPowerCommand };
   enum Output { kDeflection, kVelocity, kForce, kThermalForce, kRawDeflection };
 
-  SelfSensingEstimator(std::string group, SelfSensingEstimatorParameters parameters, double period);
+  // A fixed model (no parameters for a context to change but the sample period).
+  SelfSensingEstimator(std::string group, SelfSensingEstimatorParameters defaults, double period);
+  SelfSensingEstimator(std::string group, SelfSensingEstimatorParameters defaults, double period,
+                       ParameterBindings<SelfSensingEstimatorParameters> bindings);
   // Keys: inductance {lambda_l, lambda_x, lambda_0}, filters {moving_average, median,
   // low_pass_cutoff} (optional, thesis defaults 2, 15, 0.111 Hz), thermal {kappa_P, kappa_c,
   // initial_thermal_force (optional, 0 N)}, mechanics {k1, k2, damping, force_offset},
-  // calibration {deflection_offset, force_offset} (optional, 0).
+  // calibration {deflection_offset, force_offset} (optional, 0). The low-pass cut-off and the
+  // calibration offsets are parameters whether given or not.
   static std::unique_ptr<SelfSensingEstimator> from_config(const std::string& group,
                                                            const ConfigNode& node, double period);
 
   std::vector<OutputDeclaration> outputs() const override;
   std::vector<InputDeclaration> inputs() const override;
+  std::vector<ParameterDeclaration> parameters() const override;
+  std::unique_ptr<RunState> create_run_state(const RunSetup& setup) const override;
+  std::string check_parameters(const RunSetup& setup) const override;
   void compute_outputs(const Evaluation& evaluation) const override;
 
-  // One sample, outside the engine: what sample() does with its two inputs.
-  const SelfSensingEstimate& process(double inductance_measure, double power_command);
-  // Forgets everything but the parameters and offsets; the next sample is a first one.
-  void restart();
-
-  const SelfSensingEstimate& estimate() const { return estimate_; }
-  const SelfSensingEstimatorParameters& parameters() const { return parameters_; }
-  void set_deflection_offset(double offset);
-  void set_force_offset(double offset);
-  double deflection_offset() const { return parameters_.deflection_offset; }
-  double force_offset() const { return parameters_.force_offset; }
-  // (7.4) of the estimator's own law, without filters or calibration.
-  double model_deflection(double inductance_measure) const;
-
-  long rejected_measurements() const { return rejected_measurements_; }  // not finite or <= 0
-  long out_of_domain_samples() const { return out_of_domain_samples_; }  // median <= lambda_0
+  const SelfSensingEstimatorParameters& defaults() const { return defaults_; }
+  // A run's estimation, for inspection.
+  const SelfSensingEstimation& estimation(const Context& context) const;
 
  protected:
-  void sample(const Evaluation& evaluation, long index) override;
+  void sample(const Evaluation& evaluation, long index) const override;
 
  private:
-  void publish();
-
-  SelfSensingEstimatorParameters parameters_;
-  MovingAverage moving_average_;
-  RunningMedian median_;
-  FirstOrderLowPass low_pass_;
-  DiscreteThermalForce thermal_;
-  DiscreteSls sls_;
-
-  bool started_ = false;         // a first sample has been taken
-  bool has_deflection_ = false;  // a usable L* has arrived since the start
-  long last_index_ = 0;
-  double model_raw_deflection_ = 0.0;  // (7.4), uncalibrated, held over bad samples
-  double model_deflection_ = 0.0;      // low-passed, uncalibrated
-  double velocity_ = 0.0;
-  long rejected_measurements_ = 0;
-  long out_of_domain_samples_ = 0;
-  SelfSensingEstimate estimate_;
+  struct Run;
+  SelfSensingEstimatorParameters defaults_;
+  ParameterBindings<SelfSensingEstimatorParameters> bindings_;
 };
 
 }  // namespace tcpmsim

@@ -2,56 +2,95 @@
 
 namespace tcpmsim {
 
-InductanceLaw read_inductance_law(const ConfigNode& node) {
+namespace {
+using P = CoilImpedanceParameters;
+
+void read_inductance(const ConfigNode& node, P& p, ParameterBindings<P>& bind) {
   node.declare(
       {"quantity", "lambda_l", "lambda_x", "lambda_T", "lambda_0", "reference_temperature"});
-  InductanceLaw law;
+  InductanceLaw& law = p.inductance;
   law.is_measure = node.choice_or("quantity", {"inductance", "measure"}, "inductance") == "measure";
   const char* per_length = law.is_measure ? "m" : "H*m";
   const char* value = law.is_measure ? "1" : "H";
   const char* per_kelvin = law.is_measure ? "1/K" : "H/K";
-  law.lambda_l = node.quantity("lambda_l", per_length, ValueCheck::positive());
-  law.lambda_x = node.quantity("lambda_x", "m", ValueCheck::positive());
-  law.lambda_0 = node.quantity("lambda_0", value);
-  law.lambda_T = node.quantity_or("lambda_T", per_kelvin, 0.0);
+  bind.quantity(node, "lambda_l", per_length, ValueCheck::positive(), p,
+                [](P& v) -> double& { return v.inductance.lambda_l; });
+  bind.quantity(node, "lambda_x", "m", ValueCheck::positive(), p,
+                [](P& v) -> double& { return v.inductance.lambda_x; });
+  bind.quantity(node, "lambda_0", value, {}, p,
+                [](P& v) -> double& { return v.inductance.lambda_0; });
+  bind.quantity_or(node, "lambda_T", per_kelvin, 0.0, {}, p,
+                   [](P& v) -> double& { return v.inductance.lambda_T; });
   if (law.lambda_T != 0.0) {
-    law.reference_temperature = node.quantity("reference_temperature", "K", ValueCheck::positive());
+    bind.quantity(node, "reference_temperature", "K", ValueCheck::positive(), p,
+                  [](P& v) -> double& { return v.inductance.reference_temperature; });
   }
-  return law;
 }
 
-ResistanceLaw read_resistance_law(const ConfigNode& node) {
-  if (node.is_scalar()) return {0.0, 0.0, node.as_quantity("ohm", ValueCheck::positive()), 273.15};
+void read_resistance(const ConfigNode& node, P& p, ParameterBindings<P>& bind) {
+  if (node.is_scalar()) {
+    p.resistance_form = P::ResistanceForm::constant;
+    p.resistance = {0.0, 0.0, 0.0, 273.15};
+    bind.as_quantity(node, "ohm", ValueCheck::positive(), p,
+                     [](P& v) -> double& { return v.resistance.rho_0; });
+    return;
+  }
   node.declare({"form", "rho_x", "rho_T", "rho_0", "reference_temperature", "resistance",
                 "temperature_coefficient", "strain_coefficient"});
   const std::string form = node.choice("form", {"linear", "thermal"});
   if (form == "thermal") {
-    return ResistanceLaw::thermal(
-        node.quantity("resistance", "ohm", ValueCheck::positive()),
-        node.quantity("temperature_coefficient", "1/K"),
-        node.quantity("reference_temperature", "K", ValueCheck::positive()),
-        node.quantity_or("strain_coefficient", "ohm/m", 0.0));
+    p.resistance_form = P::ResistanceForm::thermal;
+    bind.quantity(node, "resistance", "ohm", ValueCheck::positive(), p,
+                  bind.member(&P::thermal_resistance));
+    bind.quantity(node, "temperature_coefficient", "1/K", {}, p,
+                  bind.member(&P::temperature_coefficient));
+    bind.quantity(node, "reference_temperature", "K", ValueCheck::positive(), p,
+                  bind.member(&P::thermal_reference));
+    bind.quantity_or(node, "strain_coefficient", "ohm/m", 0.0, {}, p,
+                     bind.member(&P::strain_coefficient));
+    return;
   }
-  ResistanceLaw law;
-  law.rho_x = node.quantity("rho_x", "ohm/m");
-  law.rho_T = node.quantity("rho_T", "ohm/K");
-  law.rho_0 = node.quantity("rho_0", "ohm");
-  law.reference_temperature = node.quantity("reference_temperature", "K", ValueCheck::positive());
-  return law;
+  p.resistance_form = P::ResistanceForm::linear;
+  bind.quantity(node, "rho_x", "ohm/m", {}, p, [](P& v) -> double& { return v.resistance.rho_x; });
+  bind.quantity(node, "rho_T", "ohm/K", {}, p, [](P& v) -> double& { return v.resistance.rho_T; });
+  bind.quantity(node, "rho_0", "ohm", {}, p, [](P& v) -> double& { return v.resistance.rho_0; });
+  bind.quantity(node, "reference_temperature", "K", ValueCheck::positive(), p,
+                [](P& v) -> double& { return v.resistance.reference_temperature; });
+}
+}  // namespace
+
+ResistanceLaw CoilImpedanceParameters::resistance_law() const {
+  if (resistance_form != ResistanceForm::thermal) return resistance;
+  return ResistanceLaw::thermal(thermal_resistance, temperature_coefficient, thermal_reference,
+                                strain_coefficient);
 }
 
-CoilImpedance::CoilImpedance(std::string group, InductanceLaw inductance, ResistanceLaw resistance)
-    : Component(std::move(group), "coil_impedance"),
-      inductance_(inductance),
-      resistance_(resistance) {}
+struct CoilImpedance::Run final : RunState {
+  InductanceLaw inductance;
+  ResistanceLaw resistance;
+};
 
-bool CoilImpedance::needs_temperature() const {
-  return inductance_.lambda_T != 0.0 || resistance_.rho_T != 0.0;
+CoilImpedance::CoilImpedance(std::string group, CoilImpedanceParameters defaults,
+                             ParameterBindings<CoilImpedanceParameters> bindings)
+    : Component(std::move(group), "coil_impedance"),
+      defaults_(defaults),
+      bindings_(std::move(bindings)),
+      temperature_dependent_(defaults_.inductance.lambda_T != 0.0 ||
+                             defaults_.resistance_law().rho_T != 0.0) {}
+
+std::unique_ptr<CoilImpedance> CoilImpedance::from_config(const std::string& group,
+                                                          const ConfigNode& inductance,
+                                                          const ConfigNode& resistance) {
+  P p;
+  ParameterBindings<P> bind;
+  read_resistance(resistance, p, bind);
+  read_inductance(inductance, p, bind);
+  return std::make_unique<CoilImpedance>(group, p, std::move(bind));
 }
 
 std::vector<OutputDeclaration> CoilImpedance::outputs() const {
-  return {inductance_.is_measure ? OutputDeclaration{"inductance_measure", "1"}
-                                 : OutputDeclaration{"inductance", "H"},
+  return {defaults_.inductance.is_measure ? OutputDeclaration{"inductance_measure", "1"}
+                                          : OutputDeclaration{"inductance", "H"},
           {"resistance", "ohm"}};
 }
 
@@ -60,11 +99,33 @@ std::vector<InputDeclaration> CoilImpedance::inputs() const {
   return {{"deflection", true}};
 }
 
+std::vector<ParameterDeclaration> CoilImpedance::parameters() const {
+  return bindings_.declarations(defaults_);
+}
+
+std::unique_ptr<RunState> CoilImpedance::create_run_state(const RunSetup& setup) const {
+  const P p = bindings_.assign(defaults_, setup.parameters);
+  auto run = std::make_unique<Run>();
+  run->inductance = p.inductance;
+  run->resistance = p.resistance_law();
+  return run;
+}
+
+std::string CoilImpedance::check_parameters(const RunSetup& setup) const {
+  const P p = bindings_.assign(defaults_, setup.parameters);
+  if (!needs_temperature() && (p.inductance.lambda_T != 0.0 || p.resistance_law().rho_T != 0.0)) {
+    return "the coil was built without a temperature input; a run cannot make it "
+           "temperature-dependent (give the dependence in the scenario)";
+  }
+  return {};
+}
+
 void CoilImpedance::compute_outputs(const Evaluation& evaluation) const {
-  const double deflection = input(evaluation, 0);
-  const double temperature = needs_temperature() ? input(evaluation, 1) : 0.0;
-  set_output(evaluation, kInductance, inductance_(deflection, temperature));
-  set_output(evaluation, kResistance, resistance_(deflection, temperature));
+  const auto& run = run_state<Run>(evaluation);
+  const double deflection = input(evaluation, kDeflection);
+  const double temperature = needs_temperature() ? input(evaluation, kTemperature) : 0.0;
+  set_output(evaluation, kInductance, run.inductance(deflection, temperature));
+  set_output(evaluation, kResistance, run.resistance(deflection, temperature));
 }
 
 }  // namespace tcpmsim

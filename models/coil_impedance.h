@@ -1,16 +1,27 @@
 #pragma once
 
+#include <memory>
+
 #include "models/laws/impedance.h"
 #include "sim/component.h"
 #include "sim/config/config_node.h"
 
 namespace tcpmsim {
 
-// (6.3)/(7.3) from its keys; `quantity: measure` gives the Muscle Drive's L* instead of henries.
-InductanceLaw read_inductance_law(const ConfigNode& node);
-// A scalar is a constant resistance (constantan); a mapping has form linear (6.5) or
-// thermal (6.4).
-ResistanceLaw read_resistance_law(const ConfigNode& node);
+// The heater coil's impedance parameters as a scenario states them: the inductance law (6.3)/
+// (7.3) directly, the resistance as a constant, the linear law (6.5) or the thermal law (6.4)
+// R0 (1 + kappa (T - T0)) + rho_x x.
+struct CoilImpedanceParameters {
+  InductanceLaw inductance;
+  enum class ResistanceForm { constant, linear, thermal };
+  ResistanceForm resistance_form = ResistanceForm::constant;
+  ResistanceLaw resistance;              // constant (rho_0) and linear forms
+  double thermal_resistance = 0.0;       // R0 [ohm] of the thermal form
+  double temperature_coefficient = 0.0;  // kappa [1/K]
+  double thermal_reference = 0.0;        // T0 [K]
+  double strain_coefficient = 0.0;       // rho_x [ohm/m]
+  ResistanceLaw resistance_law() const;
+};
 
 // The heater coil's impedance as seen by a drive or an LCR meter: inductance (or the Muscle
 // Drive's measure L*) by (6.3)/(7.3) and resistance by (6.5)/(6.4), from the muscle's
@@ -18,20 +29,31 @@ ResistanceLaw read_resistance_law(const ConfigNode& node);
 // feeds back into the Joule heating.
 class CoilImpedance final : public Component {
  public:
+  enum Input { kDeflection, kTemperature };
   enum Output { kInductance, kResistance };
-  CoilImpedance(std::string group, InductanceLaw inductance, ResistanceLaw resistance);
+  CoilImpedance(std::string group, CoilImpedanceParameters defaults,
+                ParameterBindings<CoilImpedanceParameters> bindings);
+  // Reads `inductance` and `resistance` (keys above).
+  static std::unique_ptr<CoilImpedance> from_config(const std::string& group,
+                                                    const ConfigNode& inductance,
+                                                    const ConfigNode& resistance);
 
   std::vector<OutputDeclaration> outputs() const override;
   std::vector<InputDeclaration> inputs() const override;
+  std::vector<ParameterDeclaration> parameters() const override;
+  std::unique_ptr<RunState> create_run_state(const RunSetup& setup) const override;
+  std::string check_parameters(const RunSetup& setup) const override;
   void compute_outputs(const Evaluation& evaluation) const override;
 
-  bool needs_temperature() const;
-  const InductanceLaw& inductance() const { return inductance_; }
-  const ResistanceLaw& resistance() const { return resistance_; }
+  // Whether the impedance depends on temperature (as built).
+  bool needs_temperature() const { return temperature_dependent_; }
+  const CoilImpedanceParameters& defaults() const { return defaults_; }
 
  private:
-  InductanceLaw inductance_;
-  ResistanceLaw resistance_;
+  struct Run;
+  CoilImpedanceParameters defaults_;
+  ParameterBindings<CoilImpedanceParameters> bindings_;
+  bool temperature_dependent_;
 };
 
 }  // namespace tcpmsim

@@ -4,7 +4,7 @@
 #include <memory>
 
 #include "signals/signal_config.h"
-#include "sim/component.h"
+#include "sim/parametric_component.h"
 
 namespace tcpmsim {
 
@@ -27,11 +27,16 @@ struct CoilSpringParameters {
   enum class VelocityProfile { rest, uniform, linear };
   VelocityProfile initial_profile = VelocityProfile::rest;
   double initial_velocity = 0.0;  // uniform: every winding; linear: 0 at u1 rising to this at u2
+
+  double first_mode_frequency() const;  // pi sqrt(k/m) [rad/s], (4.3)
+  double element_stiffness(int element) const;
+  double damping_time() const;  // beta [s]
 };
 
 class CoilSpringChain final : public Component {
  public:
-  CoilSpringChain(std::string group, CoilSpringParameters parameters,
+  CoilSpringChain(std::string group, CoilSpringParameters defaults,
+                  ParameterBindings<CoilSpringParameters> bindings,
                   std::unique_ptr<Signal> first_end, std::unique_ptr<Signal> second_end);
   static std::unique_ptr<CoilSpringChain> from_config(const std::string& group,
                                                       const ConfigNode& node,
@@ -39,21 +44,24 @@ class CoilSpringChain final : public Component {
 
   std::vector<StateDeclaration> states() const override;
   std::vector<OutputDeclaration> outputs() const override;
+  std::vector<SignalDeclaration> signals() const override;
+  std::vector<ParameterDeclaration> parameters() const override;
+  std::unique_ptr<RunState> create_run_state(const RunSetup& setup) const override;
+  std::string check_parameters(const RunSetup& setup) const override;
   void initialize(const Evaluation& evaluation, std::span<double> own_state) const override;
   void compute_outputs(const Evaluation& evaluation) const override;
   void compute_derivatives(const Evaluation& evaluation, double* derivatives) const override;
-  double next_breakpoint_after(double t) const override;
+  double next_breakpoint_after(const Evaluation& evaluation) const override;
   Dependencies derivative_dependencies(int state_index) const override;
-  std::vector<SignalRecord> signal_records() const override;
 
-  const CoilSpringParameters& parameters() const { return parameters_; }
-  // The linear model's matrices for the windings, M xi'' + C xi' + K xi = forcing by the
-  // ends: for modal and frequency-response analysis.
+  // The linear model's matrices for the windings as built, M xi'' + C xi' + K xi = forcing by
+  // the ends: for modal and frequency-response analysis.
   Eigen::MatrixXd mass_matrix() const;
   Eigen::MatrixXd stiffness_matrix() const;
-  double element_stiffness(int element) const;
-  double first_mode_frequency() const;              // pi sqrt(k/m) [rad/s], (4.3)
-  double end_position(int end, double time) const;  // u1 (end 0) or u2 (end 1) [m]
+  double element_stiffness(int element) const { return defaults().element_stiffness(element); }
+  double first_mode_frequency() const { return defaults().first_mode_frequency(); }
+  double end_position(int end, double time) const;  // u1 (end 0) or u2 (end 1) as built [m]
+  const CoilSpringParameters& defaults() const { return defaults_; }
 
  private:
   static constexpr int kMechanicalOutputs = 6;  // then one position per winding
@@ -61,12 +69,13 @@ class CoilSpringChain final : public Component {
   double position(const Evaluation& evaluation, int winding) const {
     return state(evaluation, 2 * winding);
   }
-  double tension(const Evaluation& evaluation, int element) const;
+  struct Run;
+  double tension(const Evaluation& evaluation, const Run& run, int element) const;
 
-  CoilSpringParameters parameters_;
+  CoilSpringParameters defaults_;
+  ParameterBindings<CoilSpringParameters> bindings_;
   std::unique_ptr<Signal> first_end_;
   std::unique_ptr<Signal> second_end_;
-  double damping_time_ = 0.0;  // beta [s]
 };
 
 }  // namespace tcpmsim

@@ -1,66 +1,37 @@
 #include "models/coil_spring_inductance.h"
 
 #include <cstdio>
+#include <tuple>
 
 #include "models/inductance/loop_mutual.h"
+#include "sim/context.h"
 
 namespace tcpmsim {
 
 namespace {
 constexpr int kFitLengths = 25;
-}
+using P = CoilSpringInductanceParameters;
 
-CoilSpringInductance::CoilSpringInductance(std::string group,
-                                           CoilSpringInductanceParameters parameters)
-    : Component(std::move(group), "coil_spring_inductance"),
-      parameters_(parameters),
+bool same(const P& a, const P& b) {
+  return std::tie(a.windings, a.coil_radius, a.wire_diameter, a.rest_length, a.stiffness,
+                  a.shortest_length, a.longest_length, a.preload_length) ==
+         std::tie(b.windings, b.coil_radius, b.wire_diameter, b.rest_length, b.stiffness,
+                  b.shortest_length, b.longest_length, b.preload_length);
+}
+}  // namespace
+
+SpringInductanceModel::SpringInductanceModel(const CoilSpringInductanceParameters& parameters)
+    : parameters_(parameters),
       evaluator_(parameters.coil_radius, inductance::wire_gmd(parameters.wire_diameter),
                  0.05 * parameters.wire_diameter, 2.0 * parameters.longest_length),
-      positions_(static_cast<std::size_t>(parameters.windings)) {
-  fit_ = fit_operating_range();
-}
+      fit_(fit_operating_range()) {}
 
-CoilSpringInductanceParameters CoilSpringInductance::parameters_from_config(const ConfigNode& node,
-                                                                            int windings,
-                                                                            double rest_length,
-                                                                            double stiffness,
-                                                                            double initial_length) {
-  node.declare({"coil_radius", "wire_diameter", "operating_range", "preload_length"});
-  CoilSpringInductanceParameters p;
-  p.windings = windings;
-  p.rest_length = rest_length;
-  p.stiffness = stiffness;
-  p.coil_radius = node.quantity("coil_radius", "m", ValueCheck::positive());
-  p.wire_diameter = node.quantity("wire_diameter", "m", ValueCheck::positive());
-  std::tie(p.shortest_length, p.longest_length) =
-      node.interval("operating_range", "m", ValueCheck::positive());
-  p.preload_length =
-      node.quantity_or("preload_length", "m", initial_length, ValueCheck::positive());
-  return p;
-}
-
-std::vector<OutputDeclaration> CoilSpringInductance::outputs() const {
-  return {{"inductance", "H", true},
-          {"inductance_deflection", "m", true},
-          {"inductance_force", "N", true}};
-}
-
-std::vector<InputDeclaration> CoilSpringInductance::inputs() const {
-  std::vector<InputDeclaration> declared;
-  char name[32];
-  for (int i = 0; i < parameters_.windings; ++i) {
-    std::snprintf(name, sizeof name, "winding_%02d", i + 1);
-    declared.push_back({name, true});
-  }
-  return declared;
-}
-
-double CoilSpringInductance::uniform_inductance(double length) const {
+double SpringInductanceModel::uniform_inductance(double length) const {
   // Rings at (i + 1/2) l / N: pitch l / N, all N rings (4.11) with uniform gaps (2.13).
   return evaluator_.inductance_uniform(parameters_.windings, length / parameters_.windings);
 }
 
-InverseLengthFit CoilSpringInductance::fit_operating_range() const {
+InverseLengthFit SpringInductanceModel::fit_operating_range() const {
   // Minimise sum (y_k - alpha L_k - beta)^2 with y = 1/l, subject to y_p = alpha L_p + beta:
   // beta = y_p - alpha L_p and alpha = sum dL dy / sum dL^2 about the preload point.
   const double preload_inductance = uniform_inductance(parameters_.preload_length);
@@ -80,14 +51,89 @@ InverseLengthFit CoilSpringInductance::fit_operating_range() const {
   return fit;
 }
 
+// The model of this run (shared with the built one when the parameters are the same) and the
+// scratch for the winding positions.
+struct CoilSpringInductance::Run final : RunState {
+  std::shared_ptr<const SpringInductanceModel> model;
+  std::vector<double> positions;
+};
+
+CoilSpringInductance::CoilSpringInductance(
+    std::string group, CoilSpringInductanceParameters defaults,
+    ParameterBindings<CoilSpringInductanceParameters> bindings, std::string rest_length_path,
+    std::string stiffness_path)
+    : Component(std::move(group), "coil_spring_inductance"),
+      built_(std::make_shared<const SpringInductanceModel>(defaults)),
+      bindings_(std::move(bindings)),
+      rest_length_path_(std::move(rest_length_path)),
+      stiffness_path_(std::move(stiffness_path)) {}
+
+std::unique_ptr<CoilSpringInductance> CoilSpringInductance::from_config(
+    const std::string& group, const ConfigNode& node, const CoilSpringParameters& chain,
+    double initial_length, const std::string& chain_group) {
+  node.declare({"coil_radius", "wire_diameter", "operating_range", "preload_length"});
+  P p;
+  ParameterBindings<P> bind;
+  p.windings = chain.windings;
+  p.rest_length = chain.rest_length;
+  p.stiffness = chain.stiffness;
+  bind.quantity(node, "coil_radius", "m", ValueCheck::positive(), p, bind.member(&P::coil_radius));
+  bind.quantity(node, "wire_diameter", "m", ValueCheck::positive(), p,
+                bind.member(&P::wire_diameter));
+  const ConfigNode range = node.at("operating_range");
+  std::tie(p.shortest_length, p.longest_length) =
+      node.interval("operating_range", "m", ValueCheck::positive());
+  bind.bind(range.parameter_path() + "[0]", "m", ValueCheck::positive(),
+            bind.member(&P::shortest_length));
+  bind.bind(range.parameter_path() + "[1]", "m", ValueCheck::positive(),
+            bind.member(&P::longest_length));
+  bind.quantity_or(node, "preload_length", "m", initial_length, ValueCheck::positive(), p,
+                   bind.member(&P::preload_length));
+  return std::make_unique<CoilSpringInductance>(
+      group, p, std::move(bind), chain_group + ".rest_length", chain_group + ".stiffness");
+}
+
+std::vector<OutputDeclaration> CoilSpringInductance::outputs() const {
+  return {{"inductance", "H", true},
+          {"inductance_deflection", "m", true},
+          {"inductance_force", "N", true}};
+}
+
+std::vector<InputDeclaration> CoilSpringInductance::inputs() const {
+  std::vector<InputDeclaration> declared;
+  char name[32];
+  for (int i = 0; i < defaults().windings; ++i) {
+    std::snprintf(name, sizeof name, "winding_%02d", i + 1);
+    declared.push_back({name, true});
+  }
+  return declared;
+}
+
+std::vector<ParameterDeclaration> CoilSpringInductance::parameters() const {
+  return bindings_.declarations(defaults());
+}
+
+std::unique_ptr<RunState> CoilSpringInductance::create_run_state(const RunSetup& setup) const {
+  P p = bindings_.assign(defaults(), setup.parameters);
+  p.rest_length = setup.context.parameter(rest_length_path_);
+  p.stiffness = setup.context.parameter(stiffness_path_);
+  auto run = std::make_unique<Run>();
+  run->model = same(p, defaults()) ? built_ : std::make_shared<const SpringInductanceModel>(p);
+  run->positions.assign(static_cast<std::size_t>(p.windings), 0.0);
+  return run;
+}
+
 void CoilSpringInductance::compute_observations(const Evaluation& evaluation) const {
-  for (int i = 0; i < parameters_.windings; ++i)
-    positions_[static_cast<std::size_t>(i)] = input(evaluation, i);
-  const double inductance = evaluator_.inductance(positions_);                  // (4.11)
-  const double deflection = fit_.length(inductance) - parameters_.rest_length;  // (4.13)
+  Run& run = mutable_run_state<Run>(evaluation);
+  const SpringInductanceModel& model = *run.model;
+  for (int i = 0; i < model.parameters().windings; ++i)
+    run.positions[static_cast<std::size_t>(i)] = input(evaluation, i);
+  const double inductance = model.evaluator().inductance(run.positions);  // (4.11)
+  const double deflection =
+      model.fit().length(inductance) - model.parameters().rest_length;  // (4.13)
   set_output(evaluation, kInductance, inductance);
   set_output(evaluation, kEstimatedDeflection, deflection);
-  set_output(evaluation, kEstimatedForce, parameters_.stiffness * deflection);  // F_L
+  set_output(evaluation, kEstimatedForce, model.parameters().stiffness * deflection);  // F_L
 }
 
 }  // namespace tcpmsim

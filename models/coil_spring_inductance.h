@@ -1,11 +1,14 @@
 #pragma once
 
 #include <memory>
+#include <string>
 #include <vector>
 
+#include "models/coil_spring_chain.h"
 #include "models/inductance/maxwell_evaluator.h"
 #include "sim/component.h"
 #include "sim/config/config_node.h"
+#include "sim/parameters.h"
 
 namespace tcpmsim {
 
@@ -38,18 +41,10 @@ struct InverseLengthFit {
   double length(double inductance) const { return 1.0 / (alpha * inductance + beta); }
 };
 
-class CoilSpringInductance final : public Component {
+// The sensor's model for one set of parameters: Maxwell's evaluator and the fit on it.
+class SpringInductanceModel {
  public:
-  enum Output { kInductance, kEstimatedDeflection, kEstimatedForce };
-  CoilSpringInductance(std::string group, CoilSpringInductanceParameters parameters);
-  static CoilSpringInductanceParameters parameters_from_config(const ConfigNode& node, int windings,
-                                                               double rest_length, double stiffness,
-                                                               double initial_length);
-
-  std::vector<OutputDeclaration> outputs() const override;
-  std::vector<InputDeclaration> inputs() const override;
-  void compute_observations(const Evaluation& evaluation) const override;
-
+  explicit SpringInductanceModel(const CoilSpringInductanceParameters& parameters);
   // L of a spring of length l with uniform windings (the fit's data).
   double uniform_inductance(double length) const;
   const InverseLengthFit& fit() const { return fit_; }
@@ -58,11 +53,43 @@ class CoilSpringInductance final : public Component {
 
  private:
   InverseLengthFit fit_operating_range() const;
-
   CoilSpringInductanceParameters parameters_;
   inductance::MaxwellEvaluator evaluator_;
   InverseLengthFit fit_;
-  mutable std::vector<double> positions_;  // scratch: no allocation per evaluation
+};
+
+class CoilSpringInductance final : public Component {
+ public:
+  enum Output { kInductance, kEstimatedDeflection, kEstimatedForce };
+  // The spring's rest length and stiffness are the chain's parameters, read by path
+  // (`rest_length_path`, `stiffness_path`) when a run starts.
+  CoilSpringInductance(std::string group, CoilSpringInductanceParameters defaults,
+                       ParameterBindings<CoilSpringInductanceParameters> bindings,
+                       std::string rest_length_path, std::string stiffness_path);
+  // Keys coil_radius, wire_diameter, operating_range, preload_length (default
+  // `initial_length`, the static length between the chain's ends at the start).
+  static std::unique_ptr<CoilSpringInductance> from_config(const std::string& group,
+                                                           const ConfigNode& node,
+                                                           const CoilSpringParameters& chain,
+                                                           double initial_length,
+                                                           const std::string& chain_group);
+
+  std::vector<OutputDeclaration> outputs() const override;
+  std::vector<InputDeclaration> inputs() const override;
+  std::vector<ParameterDeclaration> parameters() const override;
+  std::unique_ptr<RunState> create_run_state(const RunSetup& setup) const override;
+  void compute_observations(const Evaluation& evaluation) const override;
+
+  // The model as built.
+  const SpringInductanceModel& model() const { return *built_; }
+  const CoilSpringInductanceParameters& defaults() const { return built_->parameters(); }
+
+ private:
+  struct Run;
+  std::shared_ptr<const SpringInductanceModel> built_;
+  ParameterBindings<CoilSpringInductanceParameters> bindings_;
+  std::string rest_length_path_;
+  std::string stiffness_path_;
 };
 
 }  // namespace tcpmsim

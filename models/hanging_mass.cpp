@@ -2,12 +2,37 @@
 
 namespace tcpmsim {
 
-HangingMass::HangingMass(std::string group, HangingMassParameters parameters)
-    : Component(std::move(group), "hanging_mass"), parameters_(parameters) {}
+HangingMass::HangingMass(std::string group, HangingMassParameters defaults,
+                         ParameterBindings<HangingMassParameters> bindings)
+    : ParametricComponent(std::move(group), "hanging_mass", defaults, std::move(bindings)) {}
 
-void HangingMass::initialize(const Evaluation&, std::span<double> own_state) const {
-  own_state[0] = parameters_.initial_deflection;
-  own_state[1] = parameters_.initial_velocity;
+std::unique_ptr<HangingMass> HangingMass::from_config(
+    const std::string& group, const ConfigNode& node,
+    const std::function<double(double weight)>& equilibrium, bool* equilibrium_from_config) {
+  using P = HangingMassParameters;
+  P p;
+  ParameterBindings<P> bind;
+  bind.quantity(node, "mass", "kg", ValueCheck::positive(), p, bind.member(&P::mass));
+  bind.quantity_or(node, "gravity", "m/s^2", p.gravity, ValueCheck::non_negative(), p,
+                   bind.member(&P::gravity));
+  bind.quantity_or(node, "damping", "N*s/m", 0.0, ValueCheck::non_negative(), p,
+                   bind.member(&P::damping));
+  const ConfigNode initial = node.at("initial_deflection");
+  *equilibrium_from_config = initial.is_scalar() && initial.as_text() == "equilibrium";
+  if (*equilibrium_from_config) {
+    p.initial_deflection = equilibrium(p.mass * p.gravity);
+    bind.bind(initial.parameter_path(), "m", {}, bind.member(&P::initial_deflection));
+  } else {
+    bind.as_quantity(initial, "m", {}, p, bind.member(&P::initial_deflection));
+  }
+  bind.quantity_or(node, "initial_velocity", "m/s", 0.0, {}, p, bind.member(&P::initial_velocity));
+  return std::make_unique<HangingMass>(group, p, std::move(bind));
+}
+
+void HangingMass::initialize(const Evaluation& evaluation, std::span<double> own_state) const {
+  const auto& p = run_parameters(evaluation);
+  own_state[0] = p.initial_deflection;
+  own_state[1] = p.initial_velocity;
 }
 
 void HangingMass::compute_outputs(const Evaluation& evaluation) const {
@@ -16,12 +41,12 @@ void HangingMass::compute_outputs(const Evaluation& evaluation) const {
 }
 
 void HangingMass::compute_derivatives(const Evaluation& evaluation, double* derivatives) const {
+  const auto& p = run_parameters(evaluation);
   const double velocity = state(evaluation, 1);
-  const double weight = parameters_.mass * parameters_.gravity;
+  const double weight = p.mass * p.gravity;
   set_derivative(derivatives, 0, velocity);
   set_derivative(derivatives, 1,
-                 (weight - input(evaluation, kMuscleForce) - parameters_.damping * velocity) /
-                     parameters_.mass);
+                 (weight - input_sum(evaluation, kMuscleForce) - p.damping * velocity) / p.mass);
 }
 
 }  // namespace tcpmsim

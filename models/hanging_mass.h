@@ -1,6 +1,10 @@
 #pragma once
 
-#include "sim/component.h"
+#include <functional>
+#include <memory>
+
+#include "sim/config/config_node.h"
+#include "sim/parametric_component.h"
 
 namespace tcpmsim {
 
@@ -15,11 +19,18 @@ struct HangingMassParameters {
   double initial_velocity = 0.0;    // [m/s]
 };
 
-class HangingMass final : public Component {
+class HangingMass final : public ParametricComponent<HangingMassParameters> {
  public:
   enum Input { kMuscleForce };
   enum Output { kDeflection, kVelocity };
-  HangingMass(std::string group, HangingMassParameters parameters);
+  HangingMass(std::string group, HangingMassParameters defaults,
+              ParameterBindings<HangingMassParameters> bindings);
+  // Keys mass, gravity, damping, initial_deflection (a quantity, or `equilibrium`: then
+  // `equilibrium` gives it from the weight m g and *equilibrium_from_config is set), and
+  // initial_velocity.
+  static std::unique_ptr<HangingMass> from_config(
+      const std::string& group, const ConfigNode& node,
+      const std::function<double(double weight)>& equilibrium, bool* equilibrium_from_config);
 
   std::vector<StateDeclaration> states() const override {
     return {{"deflection", "m", 1e-12}, {"velocity", "m/s", 1e-10}};
@@ -27,15 +38,12 @@ class HangingMass final : public Component {
   std::vector<OutputDeclaration> outputs() const override {
     return {{"deflection", "m"}, {"velocity", "m/s"}};
   }
-  std::vector<InputDeclaration> inputs() const override { return {{"force", false}}; }
+  std::vector<InputDeclaration> inputs() const override {
+    return {{"force", false, false, InputArity::many}};
+  }
   void initialize(const Evaluation& evaluation, std::span<double> own_state) const override;
   void compute_outputs(const Evaluation& evaluation) const override;
   void compute_derivatives(const Evaluation& evaluation, double* derivatives) const override;
-
-  const HangingMassParameters& parameters() const { return parameters_; }
-
- private:
-  HangingMassParameters parameters_;
 };
 
 }  // namespace tcpmsim

@@ -13,17 +13,17 @@ std::vector<OutputDeclaration> ImposedLoad::outputs() const {
   return {{"force", "N"}};
 }
 
-void ImposedLoad::compute_outputs(const Evaluation& evaluation) const {
-  set_output(evaluation, 0, signal_->value(evaluation.signal_time));
-}
-
-double ImposedLoad::next_breakpoint_after(double t) const {
-  return signal_->next_breakpoint_after(t);
-}
-
-std::vector<Component::SignalRecord> ImposedLoad::signal_records() const {
+std::vector<SignalDeclaration> ImposedLoad::signals() const {
   if (quantity_ == Quantity::deflection) return {{"deflection", "m", signal_.get()}};
   return {{"force", "N", signal_.get()}};
+}
+
+void ImposedLoad::compute_outputs(const Evaluation& evaluation) const {
+  set_output(evaluation, 0, signal(evaluation, 0).value(evaluation.signal_time));
+}
+
+double ImposedLoad::next_breakpoint_after(const Evaluation& evaluation) const {
+  return signal(evaluation, 0).next_breakpoint_after(evaluation.time);
 }
 
 }  // namespace tcpmsim

@@ -15,12 +15,12 @@ class ImposedLoad final : public Component {
   ImposedLoad(std::string group, Quantity quantity, std::unique_ptr<Signal> signal);
 
   std::vector<OutputDeclaration> outputs() const override;
+  std::vector<SignalDeclaration> signals() const override;
   void compute_outputs(const Evaluation& evaluation) const override;
-  double next_breakpoint_after(double t) const override;
-  std::vector<SignalRecord> signal_records() const override;
+  double next_breakpoint_after(const Evaluation& evaluation) const override;
 
   Quantity quantity() const { return quantity_; }
-  const Signal& signal() const { return *signal_; }
+  const Signal& built_signal() const { return *signal_; }
 
  private:
   Quantity quantity_;

@@ -2,17 +2,29 @@
 
 namespace tcpmsim {
 
-SlsMechanics::SlsMechanics(std::string group, SlsParameters parameters, Drive drive)
-    : Component(std::move(group), "sls_mechanics"), parameters_(parameters), drive_(drive) {}
+SlsMechanics::SlsMechanics(std::string group, SlsParameters defaults,
+                           ParameterBindings<SlsParameters> bindings)
+    : ParametricComponent(std::move(group), "sls_mechanics", defaults, std::move(bindings)) {}
 
-SlsParameters SlsMechanics::parameters_from_config(const ConfigNode& node) {
+SlsParameters SlsMechanics::read(const ConfigNode& node,
+                                 ParameterBindings<SlsParameters>* bindings) {
+  using P = SlsParameters;
   node.declare({"k1", "k2", "damping", "force_offset"});
-  SlsParameters p;
-  p.k1 = node.quantity("k1", "N/m", ValueCheck::positive());
-  p.k2 = node.quantity("k2", "N/m", ValueCheck::non_negative());
-  p.damping = node.quantity("damping", "N*s/m", ValueCheck::positive());
-  p.force_offset = node.quantity("force_offset", "N");
+  P p;
+  ParameterBindings<P> local;
+  ParameterBindings<P>& bind = bindings ? *bindings : local;
+  bind.quantity(node, "k1", "N/m", ValueCheck::positive(), p, bind.member(&P::k1));
+  bind.quantity(node, "k2", "N/m", ValueCheck::non_negative(), p, bind.member(&P::k2));
+  bind.quantity(node, "damping", "N*s/m", ValueCheck::positive(), p, bind.member(&P::damping));
+  bind.quantity(node, "force_offset", "N", {}, p, bind.member(&P::force_offset));
   return p;
+}
+
+std::unique_ptr<SlsMechanics> SlsMechanics::from_config(const std::string& group,
+                                                        const ConfigNode& node) {
+  ParameterBindings<SlsParameters> bindings;
+  const SlsParameters p = read(node, &bindings);
+  return std::make_unique<SlsMechanics>(group, p, std::move(bindings));
 }
 
 std::vector<OutputDeclaration> SlsMechanics::outputs() const {
@@ -20,47 +32,75 @@ std::vector<OutputDeclaration> SlsMechanics::outputs() const {
 }
 
 std::vector<InputDeclaration> SlsMechanics::inputs() const {
-  return {{"thermal_force", true}, {drive_ == Drive::deflection ? "deflection" : "force", true}};
+  return {{"thermal_force", true},
+          {"deflection", true, false, InputArity::optional},
+          {"force", true, false, InputArity::optional},
+          {"attached_stiffness", true, false, InputArity::many},
+          {"attached_force", true, false, InputArity::many}};
+}
+
+std::string SlsMechanics::check_connections() const {
+  if (source_count(kDeflection) + source_count(kForce) != 1)
+    return "needs either its deflection or its force imposed (connected), not " +
+           std::string(source_count(kDeflection) > 0 ? "both" : "neither");
+  if (source_count(kAttachedStiffness) != source_count(kAttachedForce))
+    return "has attached force terms with a stiffness but no force, or the reverse";
+  return {};
 }
 
 double SlsMechanics::deflection(const Evaluation& evaluation) const {
-  if (drive_ == Drive::deflection) return input(evaluation, kImposed);
-  return sls::deflection_at_force(parameters_, input(evaluation, kImposed),
-                                  input(evaluation, kThermalForce), state(evaluation, 0));
+  if (deflection_imposed()) return input(evaluation, kDeflection);
+  const auto& p = run_parameters(evaluation);
+  if (!has_attachments()) {
+    return sls::deflection_at_force(p, input(evaluation, kForce), input(evaluation, kThermalForce),
+                                    state(evaluation, 0));
+  }
+  // (7.5) with the attached branches, F = (k1 + k2 + S) x - k2 x_d + F_T + phi_0 + B.
+  return (input(evaluation, kForce) - input(evaluation, kThermalForce) - p.force_offset -
+          input_sum(evaluation, kAttachedForce) + p.k2 * state(evaluation, 0)) /
+         (p.k1 + p.k2 + input_sum(evaluation, kAttachedStiffness));
 }
 
 void SlsMechanics::initialize(const Evaluation& evaluation, std::span<double> own_state) const {
   // A rested muscle: the dashpot is relaxed, x_d = x.
-  if (drive_ == Drive::deflection) {
-    own_state[0] = input(evaluation, kImposed);
-  } else {
-    own_state[0] = sls::rest_deflection(parameters_, input(evaluation, kImposed),
-                                        input(evaluation, kThermalForce));
+  if (deflection_imposed()) {
+    own_state[0] = input(evaluation, kDeflection);
+    return;
   }
+  const auto& p = run_parameters(evaluation);
+  if (!has_attachments()) {
+    own_state[0] =
+        sls::rest_deflection(p, input(evaluation, kForce), input(evaluation, kThermalForce));
+    return;
+  }
+  own_state[0] = (input(evaluation, kForce) - input(evaluation, kThermalForce) - p.force_offset -
+                  input_sum(evaluation, kAttachedForce)) /
+                 (p.k1 + input_sum(evaluation, kAttachedStiffness));
 }
 
 void SlsMechanics::compute_outputs(const Evaluation& evaluation) const {
+  const auto& p = run_parameters(evaluation);
   const double x = deflection(evaluation);
-  const double elastic = sls::elastic_force(parameters_, x, state(evaluation, 0));
-  set_output(evaluation, kDeflection, x);
+  const double elastic = sls::elastic_force(p, x, state(evaluation, 0));
+  double force = sls::total_force(p, elastic, input(evaluation, kThermalForce));  // (7.5)
+  if (has_attachments()) {
+    force += input_sum(evaluation, kAttachedStiffness) * x + input_sum(evaluation, kAttachedForce);
+  }
+  set_output(evaluation, kDeflectionOutput, x);
   set_output(evaluation, kElasticForce, elastic);
-  set_output(evaluation, kForce,
-             sls::total_force(parameters_, elastic, input(evaluation, kThermalForce)));  // (7.5)
+  set_output(evaluation, kForceOutput, force);
 }
 
 void SlsMechanics::compute_derivatives(const Evaluation& evaluation, double* derivatives) const {
-  const double x = deflection(evaluation);
-  set_derivative(derivatives, 0, sls::dashpot_rate(parameters_, x, state(evaluation, 0)));
+  set_derivative(
+      derivatives, 0,
+      sls::dashpot_rate(run_parameters(evaluation), deflection(evaluation), state(evaluation, 0)));
 }
-
-}  // namespace tcpmsim
-
-namespace tcpmsim {
 
 Dependencies SlsMechanics::derivative_dependencies(int) const {
   // With x imposed the dashpot does not see the thermal force; with F imposed, x (7.5) does.
-  if (drive_ == Drive::deflection) return {{0}, {kImposed}};
-  return {{0}, {kThermalForce, kImposed}};
+  if (deflection_imposed()) return {{0}, {kDeflection}};
+  return {{0}, {kThermalForce, kForce, kAttachedStiffness, kAttachedForce}};
 }
 
 }  // namespace tcpmsim

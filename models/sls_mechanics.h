@@ -3,42 +3,54 @@
 #include <memory>
 
 #include "models/laws/sls.h"
-#include "sim/component.h"
 #include "sim/config/config_node.h"
+#include "sim/parametric_component.h"
 
 namespace tcpmsim {
 
 // The muscle's mechanics as a component: the SLS of (7.5)-(7.6) (models/laws/sls.h) with the
 // dashpot extension x_d as its state.
 //
-// Causality follows the load: with an imposed deflection (or a mass) x is an input and F an
-// output; with an imposed force F is the input and x follows algebraically from (7.5).
-class SlsMechanics final : public Component {
+// Causality follows what the muscle is attached to, found when the system is assembled: with
+// its "deflection" input connected (an imposed deflection, a mass, a joint) x is an input and F
+// an output; with its "force" input connected (an imposed force) F is the input and x follows
+// algebraically from (7.5). Exactly one of the two must be connected.
+//
+// Further force branches attach without the SLS knowing them (models/effects): each publishes
+// its force as affine in the deflection at its present state, F_j = s_j x + b_j, through the
+// fan-in inputs "attached_stiffness" (s_j) and "attached_force" (b_j), so that (7.5) becomes
+//     F = F_l + F_T + phi_0 + S x + B,   S = sum s_j, B = sum b_j,
+// and stays solvable for x under an imposed force.
+class SlsMechanics final : public ParametricComponent<SlsParameters> {
  public:
-  enum class Drive { deflection, force };
-  enum Input { kThermalForce, kImposed };
-  enum Output { kForce, kDeflection, kElasticForce };
+  enum Input { kThermalForce, kDeflection, kForce, kAttachedStiffness, kAttachedForce };
+  enum Output { kForceOutput, kDeflectionOutput, kElasticForce };
 
-  SlsMechanics(std::string group, SlsParameters parameters, Drive drive);
-  static SlsParameters parameters_from_config(const ConfigNode& node);
+  SlsMechanics(std::string group, SlsParameters defaults,
+               ParameterBindings<SlsParameters> bindings = {});
+  // Keys k1, k2, damping, force_offset.
+  static std::unique_ptr<SlsMechanics> from_config(const std::string& group,
+                                                   const ConfigNode& node);
+  // The same keys, for a model of the muscle elsewhere (the estimator's).
+  static SlsParameters read(const ConfigNode& node, ParameterBindings<SlsParameters>* bindings);
 
   std::vector<StateDeclaration> states() const override {
     return {{"dashpot_extension", "m", 1e-12}};
   }
   std::vector<OutputDeclaration> outputs() const override;
   std::vector<InputDeclaration> inputs() const override;
+  std::string check_connections() const override;
   void initialize(const Evaluation& evaluation, std::span<double> own_state) const override;
   void compute_outputs(const Evaluation& evaluation) const override;
   void compute_derivatives(const Evaluation& evaluation, double* derivatives) const override;
   Dependencies derivative_dependencies(int state_index) const override;
 
-  const SlsParameters& parameters() const { return parameters_; }
+  // Whether the deflection is imposed (known once assembled).
+  bool deflection_imposed() const { return source_count(kDeflection) > 0; }
 
  private:
   double deflection(const Evaluation& evaluation) const;
-
-  SlsParameters parameters_;
-  Drive drive_;
+  bool has_attachments() const { return source_count(kAttachedStiffness) > 0; }
 };
 
 }  // namespace tcpmsim

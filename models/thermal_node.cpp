@@ -6,12 +6,14 @@ namespace tcpmsim {
 
 namespace {
 constexpr double kStefanBoltzmann = 5.670374419e-8;  // W m^-2 K^-4 (CODATA 2018, exact)
-}
+using P = ThermalNodeParameters;
+}  // namespace
 
-ThermalNode::ThermalNode(std::string group, ThermalNodeParameters parameters,
+ThermalNode::ThermalNode(std::string group, ThermalNodeParameters defaults,
+                         ParameterBindings<ThermalNodeParameters> bindings,
                          std::unique_ptr<Signal> ambient_temperature)
-    : Component(std::move(group), "thermal_node"),
-      parameters_(parameters),
+    : ParametricComponent(std::move(group), "thermal_node", std::move(defaults),
+                          std::move(bindings)),
       ambient_(std::move(ambient_temperature)) {}
 
 std::unique_ptr<ThermalNode> ThermalNode::from_config(const std::string& group,
@@ -19,16 +21,24 @@ std::unique_ptr<ThermalNode> ThermalNode::from_config(const std::string& group,
                                                       const SignalContext& signals) {
   node.declare({"heat_capacity", "conductance", "ambient_temperature", "heating_efficiency",
                 "radiation", "initial_temperature", "energy_accounting"});
-  ThermalNodeParameters p;
-  p.heat_capacity = node.quantity("heat_capacity", "J/K", ValueCheck::positive());
-  p.conductance = node.quantity("conductance", "W/K", ValueCheck::non_negative());
-  p.heating_efficiency = node.number_or("heating_efficiency", 1.0, ValueCheck::fraction());
+  P p;
+  ParameterBindings<P> bind;
+  bind.quantity(node, "heat_capacity", "J/K", ValueCheck::positive(), p,
+                bind.member(&P::heat_capacity));
+  bind.quantity(node, "conductance", "W/K", ValueCheck::non_negative(), p,
+                bind.member(&P::conductance));
+  bind.quantity_or(node, "heating_efficiency", "1", 1.0, ValueCheck::fraction(), p,
+                   bind.member(&P::heating_efficiency));
   if (auto radiation = node.find("radiation")) {
-    p.emissivity = radiation->number("emissivity", ValueCheck::fraction());
-    p.radiating_area = radiation->quantity("area", "m^2", ValueCheck::positive());
+    bind.quantity(*radiation, "emissivity", "1", ValueCheck::fraction(), p,
+                  bind.member(&P::emissivity));
+    bind.quantity(*radiation, "area", "m^2", ValueCheck::positive(), p,
+                  bind.member(&P::radiating_area));
   }
   if (auto initial = node.find("initial_temperature")) {
-    p.initial_temperature = initial->as_quantity("K", ValueCheck::positive());
+    p.initial_temperature = 0.0;
+    bind.as_quantity(*initial, "K", ValueCheck::positive(), p,
+                     [](P& values) -> double& { return *values.initial_temperature; });
   }
   p.energy_accounting = node.boolean_or("energy_accounting", false);
   const ConfigNode ambient_node = node.at("ambient_temperature");
@@ -36,12 +46,12 @@ std::unique_ptr<ThermalNode> ThermalNode::from_config(const std::string& group,
   if (ambient->range(0.0, signals.duration).first <= 0.0) {
     ambient_node.fail("the ambient temperature must stay above 0 K");
   }
-  return std::make_unique<ThermalNode>(group, p, std::move(ambient));
+  return std::make_unique<ThermalNode>(group, p, std::move(bind), std::move(ambient));
 }
 
 std::vector<StateDeclaration> ThermalNode::states() const {
   std::vector<StateDeclaration> declared{{"temperature", "K", 1e-6}};
-  if (parameters_.energy_accounting) {
+  if (defaults().energy_accounting) {
     declared.push_back({"heat_in", "J", 1e-9});
     declared.push_back({"heat_lost", "J", 1e-9});
   }
@@ -50,7 +60,7 @@ std::vector<StateDeclaration> ThermalNode::states() const {
 
 std::vector<OutputDeclaration> ThermalNode::outputs() const {
   std::vector<OutputDeclaration> declared{{"temperature", "K"}, {"ambient_temperature", "K"}};
-  if (parameters_.energy_accounting) {
+  if (defaults().energy_accounting) {
     declared.push_back({"heat_in", "J"});
     declared.push_back({"heat_lost", "J"});
   }
@@ -58,52 +68,55 @@ std::vector<OutputDeclaration> ThermalNode::outputs() const {
 }
 
 std::vector<InputDeclaration> ThermalNode::inputs() const {
-  return {{"power", false}};
+  return {{"power", false}, {"heat_loss", false, false, InputArity::many}};
+}
+
+std::vector<SignalDeclaration> ThermalNode::signals() const {
+  return {{"ambient_temperature", "K", ambient_.get()}};
 }
 
 double ThermalNode::initial_temperature(double start_time) const {
-  return parameters_.initial_temperature.value_or(ambient_->value(start_time));
+  return defaults().initial_temperature.value_or(ambient_->value(start_time));
 }
 
 void ThermalNode::initialize(const Evaluation& evaluation, std::span<double> own_state) const {
-  own_state[kTemperatureState] = initial_temperature(evaluation.signal_time);
+  const auto& p = run_parameters(evaluation);
+  own_state[kTemperatureState] =
+      p.initial_temperature.value_or(signal(evaluation, 0).value(evaluation.signal_time));
   for (std::size_t i = 1; i < own_state.size(); ++i) own_state[i] = 0.0;
 }
 
-double ThermalNode::heat_loss(double temperature, double ambient) const {
-  const double convection = parameters_.conductance * (temperature - ambient);
-  if (parameters_.emissivity == 0.0) return convection;
+double ThermalNode::heat_loss(const ThermalNodeParameters& p, double temperature, double ambient) {
+  const double convection = p.conductance * (temperature - ambient);
+  if (p.emissivity == 0.0) return convection;
   const double t2 = temperature * temperature, a2 = ambient * ambient;
-  return convection + parameters_.emissivity * kStefanBoltzmann * parameters_.radiating_area *
-                          (t2 * t2 - a2 * a2);
+  return convection + p.emissivity * kStefanBoltzmann * p.radiating_area * (t2 * t2 - a2 * a2);
 }
 
 void ThermalNode::compute_outputs(const Evaluation& evaluation) const {
   set_output(evaluation, kTemperature, state(evaluation, kTemperatureState));
-  set_output(evaluation, kAmbientTemperature, ambient_->value(evaluation.signal_time));
-  if (parameters_.energy_accounting) {
+  set_output(evaluation, kAmbientTemperature, signal(evaluation, 0).value(evaluation.signal_time));
+  if (defaults().energy_accounting) {
     set_output(evaluation, kHeatIn, state(evaluation, kHeatInState));
     set_output(evaluation, kHeatLost, state(evaluation, kHeatLostState));
   }
 }
 
 void ThermalNode::compute_derivatives(const Evaluation& evaluation, double* derivatives) const {
-  const double heating = parameters_.heating_efficiency * input(evaluation, kPower);
-  const double loss =
-      heat_loss(state(evaluation, kTemperatureState), ambient_->value(evaluation.signal_time));
-  set_derivative(derivatives, kTemperatureState, (heating - loss) / parameters_.heat_capacity);
-  if (parameters_.energy_accounting) {
+  const auto& p = run_parameters(evaluation);
+  const double heating = p.heating_efficiency * input(evaluation, kPower);
+  double loss = heat_loss(p, state(evaluation, kTemperatureState),
+                          signal(evaluation, 0).value(evaluation.signal_time));
+  if (source_count(kHeatLoss) > 0) loss += input_sum(evaluation, kHeatLoss);
+  set_derivative(derivatives, kTemperatureState, (heating - loss) / p.heat_capacity);
+  if (p.energy_accounting) {
     set_derivative(derivatives, kHeatInState, heating);
     set_derivative(derivatives, kHeatLostState, loss);
   }
 }
 
-double ThermalNode::next_breakpoint_after(double t) const {
-  return ambient_->next_breakpoint_after(t);
-}
-
-std::vector<Component::SignalRecord> ThermalNode::signal_records() const {
-  return {{"ambient_temperature", "K", ambient_.get()}};
+double ThermalNode::next_breakpoint_after(const Evaluation& evaluation) const {
+  return signal(evaluation, 0).next_breakpoint_after(evaluation.time);
 }
 
 }  // namespace tcpmsim

@@ -2,10 +2,24 @@
 
 #include <numeric>
 
+#include "sim/context.h"
+
 namespace tcpmsim {
 
 Component::Component(std::string group, std::string kind)
     : group_(std::move(group)), kind_(std::move(kind)) {}
+
+std::string Component::check_connections() const {
+  return {};
+}
+
+std::unique_ptr<RunState> Component::create_run_state(const RunSetup&) const {
+  return nullptr;
+}
+
+std::string Component::check_parameters(const RunSetup&) const {
+  return {};
+}
 
 void Component::initialize(const Evaluation&, std::span<double> own_state) const {
   for (double& value : own_state) value = 0.0;
@@ -17,19 +31,35 @@ void Component::compute_observations(const Evaluation&) const {}
 
 void Component::compute_derivatives(const Evaluation&, double*) const {}
 
-double Component::next_breakpoint_after(double) const {
+double Component::next_breakpoint_after(const Evaluation&) const {
   return kNoBreakpoint;
 }
 
-void Component::at_breakpoint(const Evaluation&) {}
+void Component::at_breakpoint(const Evaluation&) const {}
 
-void Component::sense(const Evaluation&) {}
+void Component::sense(const Evaluation&) const {}
 
-void Component::adapt_tolerances(std::span<double>, std::span<double>) const {}
+void Component::adapt_tolerances(const Evaluation&, std::span<double>, std::span<double>) const {}
 
 void Component::event_functions(const Evaluation&, double*) const {}
 
-void Component::at_event(int, const Evaluation&) {}
+void Component::at_event(int, const Evaluation&) const {}
+
+const Signal& Component::signal(const Context& context, int index) const {
+  return context.signal(signal_offset_ + index);
+}
+
+int Component::source_count(int input) const {
+  return fan_in_count_[static_cast<std::size_t>(input)];
+}
+
+double Component::input_sum(const Evaluation& evaluation, int index) const {
+  const int count = fan_in_count_[static_cast<std::size_t>(index)];
+  if (count == 0) return 0.0;
+  double sum = input(evaluation, index, 0);
+  for (int k = 1; k < count; ++k) sum += input(evaluation, index, k);
+  return sum;
+}
 
 namespace {
 std::vector<int> all_indices(std::size_t count) {

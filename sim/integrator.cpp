@@ -23,7 +23,7 @@ namespace tcpmsim {
 
 // All CVODE handles, released in reverse order of creation.
 struct detail::CvodeHandles {
-  SUNContext context = nullptr;
+  SUNContext sundials = nullptr;
   N_Vector state = nullptr;
   N_Vector scratch = nullptr;
   SUNMatrix matrix = nullptr;
@@ -32,7 +32,8 @@ struct detail::CvodeHandles {
   void* memory = nullptr;
 
   // Bookkeeping the callbacks need.
-  System* system = nullptr;
+  const System* system = nullptr;
+  Context* context = nullptr;
   // Piecewise signals are sampled inside [segment_start, segment_end], a few rounding errors
   // inside the segment, so each segment sees one piece of every signal, whatever the rounding
   // of times composed from shifted pieces.
@@ -57,7 +58,7 @@ struct detail::CvodeHandles {
     if (matrix) SUNMatDestroy(matrix);
     if (scratch) N_VDestroy(scratch);
     if (state) N_VDestroy(state);
-    if (context) SUNContext_Free(&context);
+    if (sundials) SUNContext_Free(&sundials);
   }
 };
 
@@ -110,7 +111,7 @@ int right_hand_side(realtype t, N_Vector y, N_Vector ydot, void* user_data) {
       return kUnrecoverable;
     }
   }
-  cv.system->evaluate_derivatives(t, cv.signal_time(t), state, derivatives);
+  cv.system->evaluate_derivatives(*cv.context, t, cv.signal_time(t), state, derivatives);
   for (int i = 0; i < size; ++i) {
     if (!std::isfinite(derivatives[i])) {
       const auto& info = cv.system->states()[static_cast<std::size_t>(i)];
@@ -141,7 +142,7 @@ int error_weights(N_Vector y, N_Vector weights, void* user_data) {
 
 int event_functions(realtype t, N_Vector y, realtype* values, void* user_data) {
   auto& cv = cvode_of(user_data);
-  cv.system->evaluate_events(t, cv.signal_time(t), N_VGetArrayPointer(y), values);
+  cv.system->evaluate_events(*cv.context, t, cv.signal_time(t), N_VGetArrayPointer(y), values);
   return 0;
 }
 
@@ -178,7 +179,7 @@ int sparse_jacobian(realtype t, N_Vector y, N_Vector fy, SUNMatrix jacobian, voi
       cv.perturbed[static_cast<std::size_t>(column)] +=
           root_epsilon * std::max(std::abs(state[column]), scale);
     }
-    cv.system->evaluate_derivatives(t, cv.signal_time(t), cv.perturbed.data(),
+    cv.system->evaluate_derivatives(*cv.context, t, cv.signal_time(t), cv.perturbed.data(),
                                     cv.perturbed_derivatives.data());
     for (int column : group) {
       const auto c = static_cast<std::size_t>(column);
@@ -207,16 +208,20 @@ void check(int flag, const char* call) {
 
 }  // namespace
 
-Integrator::Integrator(System& system, SolverSettings settings)
+Integrator::Integrator(const System& system, Context& context, SolverSettings settings)
     : cvode_(std::make_unique<detail::CvodeHandles>()),
       system_(system),
+      context_(context),
       settings_(std::move(settings)) {
   const int size = system_.state_size();
   if (size == 0) throw std::logic_error("the system has no continuous states to integrate");
+  if (&context_.system() != &system_)
+    throw std::logic_error("the context belongs to another system");
   auto& cv = *cvode_;
   cv.system = &system_;
-  check(SUNContext_Create(nullptr, &cv.context), "SUNContext_Create");
-  cv.state = N_VNew_Serial(size, cv.context);
+  cv.context = &context_;
+  check(SUNContext_Create(nullptr, &cv.sundials), "SUNContext_Create");
+  cv.state = N_VMake_Serial(size, context_.state().data(), cv.sundials);
   install_optimised_serial_kernels(cv.state);  // before cloning: the clones inherit them
   cv.scratch = N_VClone(cv.state);
   for (int i = 0; i < size; ++i) {
@@ -228,7 +233,7 @@ Integrator::Integrator(System& system, SolverSettings settings)
   cv.adapted_tolerances = cv.configured_tolerances;
   cv.relative_tolerances.assign(static_cast<std::size_t>(size), settings_.relative_tolerance);
   cv.memory =
-      CVodeCreate(settings_.method == IntegrationMethod::adams ? CV_ADAMS : CV_BDF, cv.context);
+      CVodeCreate(settings_.method == IntegrationMethod::adams ? CV_ADAMS : CV_BDF, cv.sundials);
   if (!cv.memory) throw std::runtime_error("CVodeCreate failed");
 }
 
@@ -239,14 +244,14 @@ void Integrator::attach_linear_solver() {
   const int size = system_.state_size();
   switch (settings_.linear_solver) {
     case LinearSolverKind::dense:
-      cv.matrix = SUNDenseMatrix(size, size, cv.context);
-      cv.linear_solver = SUNLinSol_Dense(cv.state, cv.matrix, cv.context);
+      cv.matrix = SUNDenseMatrix(size, size, cv.sundials);
+      cv.linear_solver = SUNLinSol_Dense(cv.state, cv.matrix, cv.sundials);
       break;
     case LinearSolverKind::band: {
       const SparsityPattern pattern = system_.jacobian_pattern();
       cv.matrix =
-          SUNBandMatrix(size, pattern.upper_bandwidth(), pattern.lower_bandwidth(), cv.context);
-      cv.linear_solver = SUNLinSol_Band(cv.state, cv.matrix, cv.context);
+          SUNBandMatrix(size, pattern.upper_bandwidth(), pattern.lower_bandwidth(), cv.sundials);
+      cv.linear_solver = SUNLinSol_Band(cv.state, cv.matrix, cv.sundials);
       break;
     }
     case LinearSolverKind::klu: {
@@ -254,9 +259,9 @@ void Integrator::attach_linear_solver() {
       cv.column_groups = cv.pattern.column_groups();
       cv.perturbed.assign(static_cast<std::size_t>(size), 0.0);
       cv.perturbed_derivatives.assign(static_cast<std::size_t>(size), 0.0);
-      cv.matrix = SUNSparseMatrix(size, size, cv.pattern.non_zeros(), CSC_MAT, cv.context);
+      cv.matrix = SUNSparseMatrix(size, size, cv.pattern.non_zeros(), CSC_MAT, cv.sundials);
       write_structure(cv.pattern, cv.matrix);
-      cv.linear_solver = SUNLinSol_KLU(cv.state, cv.matrix, cv.context);
+      cv.linear_solver = SUNLinSol_KLU(cv.state, cv.matrix, cv.sundials);
       break;
     }
   }
@@ -328,7 +333,7 @@ void Integrator::refresh_tolerances() {
             cv.adapted_tolerances.begin());
   std::fill(cv.relative_tolerances.begin(), cv.relative_tolerances.end(),
             settings_.relative_tolerance);
-  system_.adapt_tolerances(cv.adapted_tolerances.data(), cv.relative_tolerances.data());
+  system_.adapt_tolerances(context_, cv.adapted_tolerances.data(), cv.relative_tolerances.data());
 }
 
 void Integrator::start_segment(double start, bool first) {
@@ -339,7 +344,7 @@ void Integrator::start_segment(double start, bool first) {
     check(CVodeSetErrHandlerFn(cv.memory, capture_error, cvode_.get()), "CVodeSetErrHandlerFn");
     check(CVodeWFtolerances(cv.memory, error_weights), "CVodeWFtolerances");
     if (settings_.method == IntegrationMethod::adams) {
-      cv.nonlinear_solver = SUNNonlinSol_FixedPoint(cv.state, 0, cv.context);
+      cv.nonlinear_solver = SUNNonlinSol_FixedPoint(cv.state, 0, cv.sundials);
       check(CVodeSetNonlinearSolver(cv.memory, cv.nonlinear_solver), "CVodeSetNonlinearSolver");
     } else {
       attach_linear_solver();
@@ -366,8 +371,8 @@ SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output, Ou
                                  const Progress& progress) {
   auto& cv = *cvode_;
   double* state = N_VGetArrayPointer(cv.state);
-  system_.initialize(t0, state);
-  system_.at_breakpoint(t0, t0, state);  // sampled components take their first sample
+  system_.initialize(context_, t0, state);
+  system_.at_breakpoint(context_, t0, t0, state);  // sampled components take their first sample
   statistics_ = {};
   OutputGrid grid(std::max(t0, output.start), t_end, output.interval);
   long steps_taken = 0;
@@ -378,9 +383,9 @@ SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output, Ou
     // Breakpoints closer than a few rounding errors are one event; a signal composed from
     // shifted pieces may report an instant that is t itself after rounding.
     const double margin = time_margin(t);
-    double stop = system_.next_breakpoint_after(t);
+    double stop = system_.next_breakpoint_after(context_, t);
     while (stop <= t + 2.0 * margin)
-      stop = system_.next_breakpoint_after(std::max(stop, t + 2.0 * margin));
+      stop = system_.next_breakpoint_after(context_, std::max(stop, t + 2.0 * margin));
     stop = std::min(stop, t_end);
     const bool last_segment = stop >= t_end;
     start_segment(t, t == t0);
@@ -398,7 +403,7 @@ SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output, Ou
       if (flag == CV_ROOT_RETURN) {
         ++statistics_.events;
         check(CVodeGetRootInfo(cv.memory, cv.event_flags.data()), "CVodeGetRootInfo");
-        system_.at_events(reached, cv.signal_time(reached), state, cv.event_flags.data());
+        system_.at_events(context_, reached, cv.signal_time(reached), state, cv.event_flags.data());
         refresh_tolerances();
       }
       if (++steps_taken > settings_.max_steps) {
@@ -420,17 +425,17 @@ SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output, Ou
         const double when = grid.time();
         if (when > reached || (when >= stop && !last_segment)) break;
         check(CVodeGetDky(cv.memory, when, 0, cv.scratch), "CVodeGetDky");
-        system_.evaluate_outputs(when, cv.signal_time(when), N_VGetArrayPointer(cv.scratch));
-        sink.record(when, system_.signals());
+        system_.evaluate_outputs(context_, when, cv.signal_time(when),
+                                 N_VGetArrayPointer(cv.scratch));
+        sink.record(when, context_.signals());
         ++statistics_.output_samples;
       }
       if (progress) progress(reached, steps_taken);
     }
     t = stop;
-    if (t < t_end) system_.at_breakpoint(t, t - time_margin(t), state);
+    if (t < t_end) system_.at_breakpoint(context_, t, t - time_margin(t), state);
   }
   accumulate_statistics();
-  final_state_.assign(state, state + system_.state_size());
   return statistics_;
 }
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/context.h"
 #include "sim/system.h"
 
 namespace tcpmsim {
@@ -76,12 +77,13 @@ class SolverFailure : public std::runtime_error {
   SolverStatistics statistics_;
 };
 
-// CVODE (BDF, Newton) over a System. Steps with CV_ONE_STEP, writes outputs by interpolation
-// (CVodeGetDky) on a uniform grid, stops hard at every breakpoint the components declare and
-// restarts there with CVodeReInit.
+// CVODE (BDF, Newton) over a System and one run Context. Steps with CV_ONE_STEP, writes
+// outputs by interpolation (CVodeGetDky) on a uniform grid, stops hard at every breakpoint the
+// components declare and restarts there with CVodeReInit. The state CVODE advances is the
+// context's.
 class Integrator {
  public:
-  Integrator(System& system, SolverSettings settings);
+  Integrator(const System& system, Context& context, SolverSettings settings);
   ~Integrator();
   Integrator(const Integrator&) = delete;
   Integrator& operator=(const Integrator&) = delete;
@@ -93,7 +95,7 @@ class Integrator {
   SolverStatistics run(double t0, double t_end, OutputTimes output, OutputSink& sink,
                        const Progress& progress = {});
 
-  const std::vector<double>& final_state() const { return final_state_; }
+  const std::vector<double>& final_state() const { return context_.state(); }
 
  private:
   void attach_linear_solver();
@@ -103,9 +105,9 @@ class Integrator {
   SolverFailure failure(const std::string& headline);
 
   std::unique_ptr<detail::CvodeHandles> cvode_;
-  System& system_;
+  const System& system_;
+  Context& context_;
   SolverSettings settings_;
-  std::vector<double> final_state_;
   SolverStatistics statistics_;
 };
 

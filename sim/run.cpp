@@ -21,17 +21,30 @@ const char* linear_solver_name(LinearSolverKind kind) {
   return "dense";
 }
 
-SolverStatistics integrate(Scenario& scenario, OutputSink& sink,
+SolverStatistics integrate(const Scenario& scenario, Context& context, OutputSink& sink,
                            const Integrator::Progress& progress) {
-  Integrator integrator(*scenario.system, scenario.solver);
+  Integrator integrator(*scenario.system, context, scenario.solver);
   return integrator.run(0.0, scenario.settings.duration,
                         {scenario.settings.output_interval, scenario.settings.output_start}, sink,
                         progress);
 }
 
-RunOutcome run_scenario(Scenario& scenario, const std::string& output_path,
+SolverStatistics integrate(const Scenario& scenario, OutputSink& sink,
+                           const Integrator::Progress& progress) {
+  Context context = scenario.make_context();
+  return integrate(scenario, context, sink, progress);
+}
+
+RunOutcome run_scenario(const Scenario& scenario, const std::string& output_path,
+                        const Integrator::Progress& progress) {
+  Context context = scenario.make_context();
+  return run_scenario(scenario, context, output_path, progress);
+}
+
+RunOutcome run_scenario(const Scenario& scenario, Context& context, const std::string& output_path,
                         const Integrator::Progress& progress) {
   const auto started = std::chrono::steady_clock::now();
+  scenario.system->prepare(context);  // the signals as this run has them, for the record
 
   RecordMetadata metadata{scenario.settings.name,
                           scenario.source,
@@ -43,9 +56,9 @@ RunOutcome run_scenario(Scenario& scenario, const std::string& output_path,
                           scenario.settings.duration};
   RunOutcome outcome;
   try {
-    Hdf5Recorder recorder(output_path, *scenario.system, metadata);
+    Hdf5Recorder recorder(output_path, *scenario.system, context, metadata);
     try {
-      outcome.statistics = integrate(scenario, recorder, progress);
+      outcome.statistics = integrate(scenario, context, recorder, progress);
       recorder.finish(outcome.statistics);
       outcome.output_path = output_path;
       outcome.succeeded = true;

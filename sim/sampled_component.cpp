@@ -8,12 +8,16 @@ SampledComponent::SampledComponent(std::string group, std::string kind, double p
                                    SamplingStage stage)
     : Component(std::move(group), std::move(kind)), period_(period), stage_(stage) {}
 
-double SampledComponent::next_breakpoint_after(double t) const {
-  return next_grid_instant(t, period_);
+std::vector<ParameterDeclaration> SampledComponent::parameters() const {
+  return {{group() + ".sample_period", "s", period_, ValueCheck::positive(), {}}};
 }
 
-void SampledComponent::at_breakpoint(const Evaluation& evaluation) {
-  if (const auto k = grid_index_at(evaluation.time, period_)) sample(evaluation, *k);
+double SampledComponent::next_breakpoint_after(const Evaluation& evaluation) const {
+  return next_grid_instant(evaluation.time, period(evaluation));
+}
+
+void SampledComponent::at_breakpoint(const Evaluation& evaluation) const {
+  if (const auto k = grid_index_at(evaluation.time, period(evaluation))) sample(evaluation, *k);
 }
 
 }  // namespace tcpmsim

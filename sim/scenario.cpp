@@ -56,11 +56,12 @@ ScenarioSettings read_settings(const ConfigNode& root) {
 struct MuscleSummary {
   SlsParameters mechanics;
   double initial_thermal_force = 0.0;
+  std::function<double(const Context&)> initial_thermal_force_in;  // the same in a run
   bool has_temperature = false;
   const CoilImpedance* coil = nullptr;
 };
 
-MuscleSummary build_thermal(System& system, const ConfigNode& muscle,
+MuscleSummary build_thermal(SystemBuilder& system, const ConfigNode& muscle,
                             const SignalContext& signals) {
   muscle.declare({"thermal", "thermal_force", "mechanics", "resistance", "inductance"});
   MuscleSummary summary;
@@ -74,8 +75,11 @@ MuscleSummary build_thermal(System& system, const ConfigNode& muscle,
     }
     auto& reduced = system.add(ReducedThermalForce::from_config(kMuscle, thermal_force));
     system.connect(reduced, "power", "drive.power");
-    summary.initial_thermal_force = reduced.parameters().initial_thermal_force;
-    summary.has_temperature = reduced.parameters().force_per_kelvin.has_value();
+    summary.initial_thermal_force = reduced.defaults().initial_thermal_force;
+    summary.initial_thermal_force_in = [](const Context& context) {
+      return context.parameter("muscle.thermal_force.initial_thermal_force");
+    };
+    summary.has_temperature = reduced.defaults().force_per_kelvin.has_value();
     return summary;
   }
   auto& node = system.add(ThermalNode::from_config(kMuscle, muscle.at("thermal"), signals));
@@ -84,30 +88,40 @@ MuscleSummary build_thermal(System& system, const ConfigNode& muscle,
   system.connect(force, "temperature", "muscle.temperature");
   // The thermal node starts at its initial temperature; F_T follows from it.
   summary.initial_thermal_force =
-      force.force_per_kelvin() * (node.initial_temperature(0.0) - force.reference_temperature());
+      force.defaults().force_per_kelvin *
+      (node.initial_temperature(0.0) - force.defaults().reference_temperature);
+  const bool initial_given = node.defaults().initial_temperature.has_value();
+  summary.initial_thermal_force_in = [initial_given](const Context& context) {
+    const double start =
+        initial_given
+            ? context.parameter("muscle.thermal.initial_temperature")
+            : context.signal(*context.system().signal_slot("muscle", "ambient_temperature"))
+                  .value(0.0);
+    return context.parameter("muscle.thermal_force.force_per_kelvin") *
+           (start - context.parameter("muscle.thermal_force.reference_temperature"));
+  };
   summary.has_temperature = true;
   return summary;
 }
 
-MuscleSummary build_muscle(System& system, const ConfigNode& muscle, SlsMechanics::Drive drive,
+MuscleSummary build_muscle(SystemBuilder& system, const ConfigNode& muscle, bool force_imposed,
                            const SignalContext& signals) {
   MuscleSummary summary = build_thermal(system, muscle, signals);
-  summary.mechanics = SlsMechanics::parameters_from_config(muscle.at("mechanics"));
-  auto& mechanics = system.add(std::make_unique<SlsMechanics>(kMuscle, summary.mechanics, drive));
+  auto& mechanics = system.add(SlsMechanics::from_config(kMuscle, muscle.at("mechanics")));
+  summary.mechanics = mechanics.defaults();
   system.connect(mechanics, "thermal_force", "muscle.thermal_force");
-  if (drive == SlsMechanics::Drive::deflection) {
-    system.connect(mechanics, "deflection", "load.deflection");
-  } else {
+  if (force_imposed) {
     system.connect(mechanics, "force", "load.force");
+  } else {
+    system.connect(mechanics, "deflection", "load.deflection");
   }
   const ConfigNode resistance = muscle.at("resistance");
   const ConfigNode inductance = muscle.at("inductance");
-  auto& coil = system.add(std::make_unique<CoilImpedance>(
-      kMuscle, read_inductance_law(inductance), read_resistance_law(resistance)));
+  auto& coil = system.add(CoilImpedance::from_config(kMuscle, inductance, resistance));
   system.connect(coil, "deflection", "muscle.deflection");
   if (coil.needs_temperature()) {
     if (!summary.has_temperature) {
-      (coil.resistance().rho_T != 0.0 ? resistance : inductance)
+      (coil.defaults().resistance_law().rho_T != 0.0 ? resistance : inductance)
           .fail(
               "depends on temperature, but the reduced thermal form reports none; give "
               "muscle.thermal_force.force_per_kelvin");
@@ -121,21 +135,20 @@ MuscleSummary build_muscle(System& system, const ConfigNode& muscle, SlsMechanic
 void check_deflection_range(const ConfigNode& node, const Signal& deflection,
                             const MuscleSummary& muscle, double duration) {
   const double lowest = deflection.range(0.0, duration).first;
-  const double singular = -muscle.coil->inductance().lambda_x;
+  const double singular = -muscle.coil->defaults().inductance.lambda_x;
   if (!(lowest > singular)) {
     node.fail("the deflection reaches " + std::to_string(lowest) + " m, at or below -lambda_x = " +
               std::to_string(singular) + " m where the inductance law (6.3) is singular");
   }
 }
 
-void add_sensor(System& system, const ConfigNode& load, const std::string& name,
+void add_sensor(SystemBuilder& system, const ConfigNode& load, const std::string& name,
                 const std::string& unit, const std::string& source, const char* resolution_key) {
-  const double resolution = load.quantity_or(resolution_key, unit, 0.0, ValueCheck::non_negative());
-  auto& sensor = system.add(std::make_unique<Sensor>(kLoad, name, unit, resolution));
+  auto& sensor = system.add(Sensor::from_config(kLoad, name, unit, load, resolution_key));
   system.connect(sensor, "measured", source);
 }
 
-void build_load(System& system, const ConfigNode& load, const std::string& type,
+void build_load(SystemBuilder& system, const ConfigNode& load, const std::string& type,
                 const MuscleSummary& muscle, const SignalContext& signals) {
   load.declare({"type", "deflection", "force", "mass", "gravity", "damping", "initial_deflection",
                 "initial_velocity", "load_cell_resolution", "position_resolution"});
@@ -151,21 +164,24 @@ void build_load(System& system, const ConfigNode& load, const std::string& type,
                                              read_signal(load.at("force"), "N", signals)));
     add_sensor(system, load, "deflection", "m", "muscle.deflection", "position_resolution");
   } else {
-    HangingMassParameters p;
-    p.mass = load.quantity("mass", "kg", ValueCheck::positive());
-    p.gravity = load.quantity_or("gravity", "m/s^2", p.gravity, ValueCheck::non_negative());
-    p.damping = load.quantity_or("damping", "N*s/m", 0.0, ValueCheck::non_negative());
-    const ConfigNode initial = load.at("initial_deflection");
-    if (initial.is_scalar() && initial.as_text() == "equilibrium") {
-      // Static balance of (7.5) with a relaxed dashpot: m g = k1 x + F_T(0) + phi_0.
-      p.initial_deflection =
-          (p.mass * p.gravity - muscle.initial_thermal_force - muscle.mechanics.force_offset) /
-          muscle.mechanics.k1;
-    } else {
-      p.initial_deflection = initial.as_quantity("m");
+    // Static balance of (7.5) with a relaxed dashpot: m g = k1 x + F_T(0) + phi_0.
+    const auto equilibrium = [muscle](double weight) {
+      return (weight - muscle.initial_thermal_force - muscle.mechanics.force_offset) /
+             muscle.mechanics.k1;
+    };
+    bool at_equilibrium = false;
+    auto& mass = system.add(HangingMass::from_config(kLoad, load, equilibrium, &at_equilibrium));
+    if (at_equilibrium) {
+      system.derive(
+          "load.initial_deflection",
+          [muscle](const Context& context) {
+            return (context.parameter("load.mass") * context.parameter("load.gravity") -
+                    muscle.initial_thermal_force_in(context) -
+                    context.parameter("muscle.mechanics.force_offset")) /
+                   context.parameter("muscle.mechanics.k1");
+          },
+          "the static balance m g = k1 x + F_T + phi_0");
     }
-    p.initial_velocity = load.quantity_or("initial_velocity", "m/s", 0.0);
-    auto& mass = system.add(std::make_unique<HangingMass>(kLoad, p));
     system.connect(mass, "force", "muscle.force");
     add_sensor(system, load, "force", "N", "muscle.force", "load_cell_resolution");
   }
@@ -218,9 +234,9 @@ SolverSettings read_solver(const ConfigNode& root, const System& system) {
 // The self-sensing estimator and the controller (thesis 7.2.3-7.2.4), sampled with the Muscle
 // Drive's PWM: the estimator reads the drive's L* and the power it was asked for, the controller
 // the estimate of what it controls.
-void build_self_sensing(System& system, const ConfigNode& root, const MuscleDrive& drive,
+void build_self_sensing(SystemBuilder& system, const ConfigNode& root, const MuscleDrive& drive,
                         const SignalContext& signals) {
-  const double period = 1.0 / drive.parameters().pwm_frequency;
+  const double period = 1.0 / drive.defaults().pwm_frequency;
   const bool controlled = root.has("controller");
   if (!root.has("estimator")) {
     if (controlled) root.at("controller").fail("a controller needs an estimator section to read");
@@ -228,12 +244,20 @@ void build_self_sensing(System& system, const ConfigNode& root, const MuscleDriv
   }
   auto& estimator =
       system.add(SelfSensingEstimator::from_config("estimator", root.at("estimator"), period));
+  system.derive(
+      "estimator.sample_period",
+      [](const Context& context) { return 1.0 / context.parameter("drive.pwm_frequency"); },
+      "1 / drive.pwm_frequency");
   system.connect(estimator, "inductance_measure", "drive.inductance_measure");
   system.connect(estimator, "power_command",
                  controlled ? "controller.power_command" : "drive.power_demand");
   if (!controlled) return;
   auto& controller =
       system.add(PidController::from_config("controller", root.at("controller"), period, signals));
+  system.derive(
+      "controller.sample_period",
+      [](const Context& context) { return 1.0 / context.parameter("drive.pwm_frequency"); },
+      "1 / drive.pwm_frequency");
   system.connect(controller, "estimate",
                  controller.target() == PidController::Target::deflection ? "estimator.deflection"
                                                                           : "estimator.force");
@@ -241,7 +265,7 @@ void build_self_sensing(System& system, const ConfigNode& root, const MuscleDriv
 
 // `joule`: a prescribed duty, power or current, period-averaged. `muscle_drive`: the thesis'
 // Muscle Drive, averaged or switched, measuring L*.
-void build_drive(System& system, const ConfigNode& root, const MuscleSummary& muscle,
+void build_drive(SystemBuilder& system, const ConfigNode& root, const MuscleSummary& muscle,
                  const SignalContext& signals) {
   const ConfigNode drive = root.at("drive");
   if (drive.choice_or("model", {"joule", "muscle_drive"}, "joule") == "joule") {
@@ -253,7 +277,7 @@ void build_drive(System& system, const ConfigNode& root, const MuscleSummary& mu
     if (joule.needs_resistance()) system.connect(joule, "heater_resistance", "muscle.resistance");
     return;
   }
-  if (muscle.coil->inductance().is_measure) {
+  if (muscle.coil->defaults().inductance.is_measure) {
     drive.fail(
         "the Muscle Drive measures the coil's decay time itself: give muscle.inductance in henries "
         "(quantity: inductance), not as a measure");
@@ -267,28 +291,27 @@ void build_drive(System& system, const ConfigNode& root, const MuscleSummary& mu
 }
 
 // The muscle with its drive and load (thesis ch. 6-7).
-void build_muscle_system(System& system, const ConfigNode& root, const SignalContext& signals) {
+void build_muscle_system(SystemBuilder& system, const ConfigNode& root,
+                         const SignalContext& signals) {
   const ConfigNode load = root.at("load");
   const std::string load_type = load.choice("type", {"deflection", "force", "hanging_mass"});
-  const auto drive_mode =
-      load_type == "force" ? SlsMechanics::Drive::force : SlsMechanics::Drive::deflection;
-  const MuscleSummary muscle = build_muscle(system, root.at("muscle"), drive_mode, signals);
+  const MuscleSummary muscle =
+      build_muscle(system, root.at("muscle"), load_type == "force", signals);
   build_drive(system, root, muscle, signals);
   build_load(system, load, load_type, muscle, signals);
 }
 
 // A metal coil spring between two imposed end motions (thesis ch. 4).
-void build_spring_system(System& system, const ConfigNode& spring, const SignalContext& signals) {
+void build_spring_system(SystemBuilder& system, const ConfigNode& spring,
+                         const SignalContext& signals) {
   spring.declare({"windings", "rest_length", "mass", "stiffness", "damping_ratio",
                   "initial_velocity", "first_end", "second_end", "inductance"});
   auto& chain = system.add(CoilSpringChain::from_config("spring", spring, signals));
   const auto inductance = spring.find("inductance");
   if (!inductance) return;
-  const auto& p = chain.parameters();
   const double initial_length = chain.end_position(1, 0.0) - chain.end_position(0, 0.0);
-  auto& sensor = system.add(std::make_unique<CoilSpringInductance>(
-      "spring", CoilSpringInductance::parameters_from_config(*inductance, p.windings, p.rest_length,
-                                                             p.stiffness, initial_length)));
+  auto& sensor = system.add(CoilSpringInductance::from_config(
+      "spring", *inductance, chain.defaults(), initial_length, "spring"));
   for (const auto& input : sensor.inputs())
     system.connect(sensor, input.name, "spring." + input.name);
 }
@@ -299,8 +322,7 @@ Scenario build_scenario(const ConfigNode& root) {
   Scenario scenario;
   scenario.settings = read_settings(root);
   const SignalContext signals{scenario.settings.seed, scenario.settings.duration};
-  scenario.system = std::make_unique<System>();
-  System& system = *scenario.system;
+  SystemBuilder system;
 
   if (root.has("spring")) {
     build_spring_system(system, root.at("spring"), signals);
@@ -311,14 +333,18 @@ Scenario build_scenario(const ConfigNode& root) {
   }
 
   try {
-    system.assemble();
+    scenario.system = system.build();
   } catch (const std::logic_error& error) {
     root.fail(std::string("the scenario does not assemble: ") + error.what());
   }
-  scenario.solver = read_solver(root, system);
+  scenario.solver = read_solver(root, *scenario.system);
   root.reject_unknown_keys();
   scenario.resolved_yaml = root.resolved_yaml();
   return scenario;
+}
+
+Context Scenario::make_context() const {
+  return Context(*system);
 }
 
 Scenario load_scenario(const std::string& file, const std::vector<std::string>& overrides,

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "sim/config/config_node.h"
+#include "sim/context.h"
 #include "sim/integrator.h"
 #include "sim/system.h"
 
@@ -20,13 +21,16 @@ struct ScenarioSettings {
   double output_start = 0.0;     // [s] first recorded time
 };
 
-// A scenario file turned into an assembled system, ready to integrate.
+// A scenario file turned into an assembled system, ready to integrate: each run takes a
+// context of its own (make_context).
 struct Scenario {
   ScenarioSettings settings;
   SolverSettings solver;
-  std::unique_ptr<System> system;
+  std::shared_ptr<const System> system;
   std::string source;         // the file it came from
   std::string resolved_yaml;  // as read, with overrides and defaults
+  // A context for one run, with the parameters as the scenario sets them.
+  Context make_context() const;
 };
 
 // Builds a scenario from a parsed document; throws ConfigError on any bad input.

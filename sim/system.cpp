@@ -2,8 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <set>
 #include <stdexcept>
+#include <unordered_set>
+
+#include "sim/context.h"
+#include "sim/signal.h"
 
 namespace tcpmsim {
 
@@ -11,203 +16,385 @@ namespace {
 std::string qualified(const Component& component, const std::string& name) {
   return component.group() + "." + name;
 }
+
+std::string named(const Component& component) {
+  return component.group() + "/" + component.kind();
+}
 }  // namespace
 
-void System::connect(const Component& consumer, std::string_view input_name,
-                     std::string_view source_output) {
+// ---------------------------------------------------------------------------------------------
+// Building
+
+void SystemBuilder::connect(const Component& consumer, std::string_view input_name,
+                            std::string_view source_output) {
   connections_.push_back({&consumer, std::string(input_name), std::string(source_output)});
 }
 
-int System::signal_index(std::string_view output) const {
-  for (const auto& channel : channels_) {
-    if (channel.group.size() + 1 + channel.name.size() == output.size() &&
-        output.starts_with(channel.group) && output[channel.group.size()] == '.' &&
-        output.ends_with(channel.name)) {
-      return channel.signal_index;
-    }
-  }
-  return -1;
+void SystemBuilder::export_input(std::string_view port, const Component& consumer,
+                                 std::string_view input_name) {
+  if (!ports_.emplace(std::string(port), Export{&consumer, std::string(input_name)}).second)
+    throw std::logic_error("two inputs are exported as the port '" + std::string(port) + "'");
 }
 
-void System::assemble() {
-  states_.clear();
-  channels_.clear();
-  signal_owner_.clear();
-  std::set<std::string> state_names;
-  int signal_count = 0;
+void SystemBuilder::connect(std::string_view port, std::string_view source_output) {
+  port_connections_.emplace_back(std::string(port), std::string(source_output));
+}
+
+bool SystemBuilder::has_port(std::string_view port) const {
+  return ports_.count(std::string(port)) > 0;
+}
+
+void SystemBuilder::derive(std::string path, ParameterRule rule, std::string explanation) {
+  derivations_.push_back({std::move(path), std::move(rule), std::move(explanation)});
+}
+
+void SystemBuilder::constrain(ParameterConstraint constraint) {
+  constraints_.push_back(std::move(constraint));
+}
+
+std::shared_ptr<const System> SystemBuilder::build() {
+  std::shared_ptr<System> system(new System());
+  system->components_ = std::move(components_);
+  system->assign_slices();
+  system->wire(*this);
+  system->order_by_feedthrough();
+  system->collect_parameters(*this);
+  *this = SystemBuilder();
+  return system;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Assembly
+
+void System::assign_slices() {
+  std::unordered_set<std::string> state_names;
+  std::unordered_set<std::string> parameter_paths;
   for (std::size_t c = 0; c < components_.size(); ++c) {
     Component& component = *components_[c];
+    component.index_ = static_cast<int>(c);
     component.state_offset_ = static_cast<int>(states_.size());
     for (const auto& declared : component.states()) {
       std::string name = qualified(component, declared.name);
       if (!state_names.insert(name).second) {
         throw std::logic_error("two components declare the state '" + name + "'");
       }
-      states_.push_back({name, declared.unit, declared.absolute_tolerance, &component});
+      states_.push_back({std::move(name), declared.unit, declared.absolute_tolerance, &component});
     }
-    component.output_offset_ = signal_count;
+    state_counts_.push_back(static_cast<int>(states_.size()) - component.state_offset_);
+    component.output_offset_ = signal_count_;
     for (const auto& declared : component.outputs()) {
-      if (signal_index(qualified(component, declared.name)) >= 0) {
-        throw std::logic_error("two components publish the output '" +
-                               qualified(component, declared.name) + "'");
+      const std::string name = qualified(component, declared.name);
+      if (!channel_by_name_.emplace(name, static_cast<int>(channels_.size())).second) {
+        throw std::logic_error("two components publish the output '" + name + "'");
       }
       channels_.push_back(
-          {component.group(), declared.name, declared.unit, signal_count++, declared.observed});
+          {component.group(), declared.name, declared.unit, signal_count_++, declared.observed});
       signal_owner_.push_back(static_cast<int>(c));
     }
-    component.input_signal_index_.assign(component.inputs().size(), -1);
+    inputs_.push_back(component.inputs());
+    component.parameter_offset_ = static_cast<int>(parameters_.size());
+    for (auto& declared : component.parameters())
+      parameters_.push_back({std::move(declared), &component, -1, {}});
+    parameter_counts_.push_back(static_cast<int>(parameters_.size()) - component.parameter_offset_);
+    component.signal_offset_ = static_cast<int>(signal_slots_.size());
+    for (const auto& declared : component.signals()) {
+      SignalSlot slot{component.group(),
+                      declared.name,
+                      declared.unit,
+                      declared.signal,
+                      &component,
+                      static_cast<int>(parameters_.size()),
+                      0};
+      const int index = static_cast<int>(signal_slots_.size());
+      for (auto& parameter : declared.signal->parameters())
+        parameters_.push_back({std::move(parameter), &component, index, {}});
+      slot.parameter_count = static_cast<int>(parameters_.size()) - slot.first_parameter;
+      signal_slots_.push_back(std::move(slot));
+    }
   }
-  state_size_ = static_cast<int>(states_.size());
-  signals_.assign(static_cast<std::size_t>(signal_count), 0.0);
+  for (std::size_t p = 0; p < parameters_.size(); ++p) {
+    const std::string& path = parameters_[p].declaration.path;
+    if (!parameter_by_path_.emplace(path, static_cast<int>(p)).second)
+      throw std::logic_error("two components declare the parameter '" + path + "'");
+  }
+}
 
-  for (const auto& connection : connections_) {
-    const auto declared = connection.consumer->inputs();
-    auto input = std::find_if(declared.begin(), declared.end(),
-                              [&](const auto& d) { return d.name == connection.input; });
-    if (input == declared.end()) {
-      throw std::logic_error(connection.consumer->group() + "/" + connection.consumer->kind() +
-                             " has no input '" + connection.input + "'");
+void System::wire(const SystemBuilder& builder) {
+  // Sources per component and input, in connection order.
+  std::vector<std::vector<std::vector<int>>> sources(components_.size());
+  for (std::size_t c = 0; c < components_.size(); ++c) sources[c].resize(inputs_[c].size());
+  auto attach = [&](const Component& consumer, const std::string& input_name,
+                    const std::string& source) {
+    const auto c = static_cast<std::size_t>(consumer.index_);
+    const auto& declared = inputs_[c];
+    const auto input = std::find_if(declared.begin(), declared.end(),
+                                    [&](const auto& d) { return d.name == input_name; });
+    if (input == declared.end())
+      throw std::logic_error(named(consumer) + " has no input '" + input_name + "'");
+    const int index = signal_index(source);
+    if (index < 0) {
+      throw std::logic_error("no component publishes '" + source + "' (needed by " +
+                             named(consumer) + ")");
     }
-    const int source = signal_index(connection.source);
-    if (source < 0) {
-      throw std::logic_error("no component publishes '" + connection.source + "' (needed by " +
-                             connection.consumer->group() + "/" + connection.consumer->kind() +
-                             ")");
-    }
-    if (channels_[static_cast<std::size_t>(source)].observed && !input->sampled) {
-      throw std::logic_error("'" + connection.source +
+    if (channels_[static_cast<std::size_t>(index)].observed && !input->sampled) {
+      throw std::logic_error("'" + source +
                              "' is an observed output; only sampled inputs may read it (" +
-                             connection.consumer->group() + "/" + connection.consumer->kind() +
-                             " input '" + connection.input + "')");
+                             named(consumer) + " input '" + input_name + "')");
     }
-    auto& consumer = const_cast<Component&>(*connection.consumer);
-    consumer.input_signal_index_[static_cast<std::size_t>(input - declared.begin())] = source;
+    sources[c][static_cast<std::size_t>(input - declared.begin())].push_back(index);
+  };
+  for (const auto& connection : builder.connections_)
+    attach(*connection.consumer, connection.input, connection.source);
+  for (const auto& [port, source] : builder.port_connections_) {
+    const auto exported = builder.ports_.find(port);
+    if (exported == builder.ports_.end())
+      throw std::logic_error("no input port '" + port + "' (to connect to '" + source + "')");
+    attach(*exported->second.consumer, exported->second.input, source);
   }
-  for (const auto& component : components_) {
-    const auto declared = component->inputs();
+  for (std::size_t c = 0; c < components_.size(); ++c) {
+    Component& component = *components_[c];
+    const auto& declared = inputs_[c];
+    component.first_source_.assign(declared.size(), -1);
+    component.fan_in_begin_.clear();
+    component.fan_in_count_.clear();
+    component.fan_in_sources_.clear();
     for (std::size_t i = 0; i < declared.size(); ++i) {
-      if (component->input_signal_index_[i] < 0) {
-        throw std::logic_error(component->group() + "/" + component->kind() + " input '" +
-                               declared[i].name + "' is not connected");
+      const auto& wired = sources[c][i];
+      const auto count = wired.size();
+      if (count == 0 && declared[i].arity == InputArity::one) {
+        throw std::logic_error(named(component) + " input '" + declared[i].name +
+                               "' is not connected");
+      }
+      if (count > 1 && declared[i].arity != InputArity::many) {
+        throw std::logic_error(named(component) + " input '" + declared[i].name +
+                               "' takes one source, but " + std::to_string(count) +
+                               " are connected");
+      }
+      if (count > 0) component.first_source_[i] = wired.front();
+      component.fan_in_begin_.push_back(static_cast<int>(component.fan_in_sources_.size()));
+      component.fan_in_count_.push_back(static_cast<int>(count));
+      component.fan_in_sources_.insert(component.fan_in_sources_.end(), wired.begin(), wired.end());
+    }
+    if (std::string problem = component.check_connections(); !problem.empty())
+      throw std::logic_error(named(component) + " " + problem);
+  }
+}
+
+void System::order_by_feedthrough() {
+  // Kahn's algorithm over "reads through direct feedthrough" edges, first-come first-placed.
+  const std::size_t count = components_.size();
+  std::vector<std::vector<std::size_t>> readers(count);
+  std::vector<int> waiting(count, 0);
+  for (std::size_t c = 0; c < count; ++c) {
+    const Component& component = *components_[c];
+    std::set<std::size_t> owners;
+    for (std::size_t i = 0; i < inputs_[c].size(); ++i) {
+      if (!inputs_[c][i].direct_feedthrough) continue;
+      const int begin = component.fan_in_begin_[i];
+      for (int k = 0; k < component.fan_in_count_[i]; ++k) {
+        const auto owner = static_cast<std::size_t>(signal_owner_[static_cast<std::size_t>(
+            component.fan_in_sources_[static_cast<std::size_t>(begin + k)])]);
+        if (owner != c) owners.insert(owner);
       }
     }
+    waiting[c] = static_cast<int>(owners.size());
+    for (std::size_t owner : owners) readers[owner].push_back(c);
   }
-  order_by_feedthrough();
+  std::deque<std::size_t> ready;
+  for (std::size_t c = 0; c < count; ++c) {
+    if (waiting[c] == 0) ready.push_back(c);
+  }
+  evaluation_order_.clear();
+  while (!ready.empty()) {
+    const std::size_t c = ready.front();
+    ready.pop_front();
+    evaluation_order_.push_back(components_[c].get());
+    for (std::size_t reader : readers[c]) {
+      if (--waiting[reader] == 0) ready.push_back(reader);
+    }
+  }
+  if (evaluation_order_.size() < count) {
+    std::string members;
+    for (std::size_t c = 0; c < count; ++c) {
+      if (waiting[c] == 0) continue;
+      members += ' ';  // appended piecewise: GCC 12 warns falsely (-Wrestrict) on " " + s
+      members += named(*components_[c]);
+    }
+    throw std::logic_error("algebraic loop through direct-feedthrough inputs:" + members);
+  }
   sampling_order_ = evaluation_order_;
   std::stable_sort(sampling_order_.begin(), sampling_order_.end(),
                    [](const Component* a, const Component* b) {
                      return a->sampling_stage() < b->sampling_stage();
                    });
-  event_offsets_.clear();
-  state_counts_.clear();
-  event_count_ = 0;
   for (const auto& component : components_) {
     event_offsets_.push_back(event_count_);
     event_count_ += component->event_count();
-    state_counts_.push_back(static_cast<int>(component->states().size()));
-  }
-  assembled_ = true;
-}
-
-void System::order_by_feedthrough() {
-  const std::size_t count = components_.size();
-  std::vector<std::set<std::size_t>> depends_on(count);
-  for (std::size_t c = 0; c < count; ++c) {
-    const auto declared = components_[c]->inputs();
-    for (std::size_t i = 0; i < declared.size(); ++i) {
-      if (!declared[i].direct_feedthrough) continue;
-      const auto owner = static_cast<std::size_t>(
-          signal_owner_[static_cast<std::size_t>(components_[c]->input_signal_index_[i])]);
-      if (owner != c) depends_on[c].insert(owner);
-    }
-  }
-  evaluation_order_.clear();
-  std::vector<char> placed(count, 0);
-  while (evaluation_order_.size() < count) {
-    bool progress = false;
-    for (std::size_t c = 0; c < count; ++c) {
-      if (placed[c]) continue;
-      const bool ready = std::all_of(depends_on[c].begin(), depends_on[c].end(),
-                                     [&](std::size_t d) { return placed[d] != 0; });
-      if (!ready) continue;
-      placed[c] = 1;
-      evaluation_order_.push_back(components_[c].get());
-      progress = true;
-    }
-    if (!progress) {
-      std::string members;
-      for (std::size_t c = 0; c < count; ++c) {
-        if (!placed[c]) members += " " + components_[c]->group() + "/" + components_[c]->kind();
-      }
-      throw std::logic_error("algebraic loop through direct-feedthrough inputs:" + members);
-    }
   }
 }
 
-Evaluation System::evaluation(double time, double signal_time, const double* state) {
-  return Evaluation{time, signal_time, state, signals_.data()};
+void System::collect_parameters(const SystemBuilder& builder) {
+  for (const auto& pending : builder.derivations_) {
+    const auto index = parameter_index(pending.path);
+    if (!index) throw std::logic_error("no parameter '" + pending.path + "' to derive");
+    parameters_[static_cast<std::size_t>(*index)].derived_from = pending.explanation;
+    derivations_.push_back({*index, pending.rule});
+  }
+  constraints_ = builder.constraints_;
 }
 
-void System::initialize(double time, double* state) {
-  if (!assembled_) throw std::logic_error("System::initialize before assemble");
-  std::fill(state, state + state_size_, 0.0);
-  const Evaluation now = evaluation(time, time, state);
-  for (Component* component : evaluation_order_) {
-    const auto size = component->states().size();
+// ---------------------------------------------------------------------------------------------
+// Queries
+
+int System::signal_index(std::string_view output) const {
+  const auto found = channel_by_name_.find(std::string(output));
+  if (found == channel_by_name_.end()) return -1;
+  return channels_[static_cast<std::size_t>(found->second)].signal_index;
+}
+
+std::optional<int> System::parameter_index(std::string_view path) const {
+  const auto found = parameter_by_path_.find(std::string(path));
+  if (found == parameter_by_path_.end()) return std::nullopt;
+  return found->second;
+}
+
+std::optional<int> System::signal_slot(std::string_view group, std::string_view name) const {
+  for (std::size_t s = 0; s < signal_slots_.size(); ++s) {
+    if (signal_slots_[s].group == group && signal_slots_[s].name == name)
+      return static_cast<int>(s);
+  }
+  return std::nullopt;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Runs
+
+Evaluation System::evaluation(const Context& context, double time, double signal_time,
+                              const double* state) const {
+  auto& mutable_context = const_cast<Context&>(context);
+  return Evaluation{time,
+                    signal_time,
+                    state,
+                    mutable_context.signals_.data(),
+                    context.parameters_.data(),
+                    context.run_state_pointers_.data(),
+                    context.prescribed_.data()};
+}
+
+void System::prepare(Context& context) const {
+  if (context.system_ != this) throw std::logic_error("the context belongs to another system");
+  // Signals whose parameters the context changed are rebuilt with the new values.
+  for (std::size_t s = 0; s < signal_slots_.size(); ++s) {
+    const SignalSlot& slot = signal_slots_[s];
+    const auto first = static_cast<std::size_t>(slot.first_parameter);
+    const auto count = static_cast<std::size_t>(slot.parameter_count);
+    bool changed = false;
+    for (std::size_t p = first; p < first + count; ++p)
+      changed = changed || context.parameters_[p] != parameters_[p].declaration.value;
+    context.rebuilt_signals_[s].reset();
+    context.prescribed_[s] = slot.signal;
+    if (!changed) continue;
+    try {
+      context.rebuilt_signals_[s] = slot.signal->with_parameters(
+          std::span<const double>(context.parameters_).subspan(first, count));
+    } catch (const std::exception& error) {
+      throw ParameterError(slot.group + "." + slot.name, error.what());
+    }
+    context.prescribed_[s] = context.rebuilt_signals_[s].get();
+  }
+  for (const auto& derivation : derivations_)
+    context.parameters_[static_cast<std::size_t>(derivation.parameter)] = derivation.rule(context);
+  if (context.parameters_changed()) {
+    for (std::size_t c = 0; c < components_.size(); ++c) {
+      const Component& component = *components_[c];
+      const RunSetup setup{std::span<const double>(context.parameters_)
+                               .subspan(static_cast<std::size_t>(component.parameter_offset_),
+                                        static_cast<std::size_t>(parameter_counts_[c])),
+                           context};
+      if (std::string problem = component.check_parameters(setup); !problem.empty())
+        throw ParameterError(named(component), problem);
+    }
+    for (const auto& constraint : constraints_) {
+      if (std::string problem = constraint(context); !problem.empty())
+        throw ParameterError("", problem);
+    }
+  }
+  for (std::size_t c = 0; c < components_.size(); ++c) {
+    const Component& component = *components_[c];
+    const RunSetup setup{std::span<const double>(context.parameters_)
+                             .subspan(static_cast<std::size_t>(component.parameter_offset_),
+                                      static_cast<std::size_t>(parameter_counts_[c])),
+                         context};
+    context.run_states_[c] = component.create_run_state(setup);
+    context.run_state_pointers_[c] = context.run_states_[c].get();
+  }
+}
+
+void System::initialize(Context& context, double time, double* state) const {
+  prepare(context);
+  std::fill(state, state + state_size(), 0.0);
+  const Evaluation now = evaluation(context, time, time, state);
+  for (const Component* component : evaluation_order_) {
+    const auto size =
+        static_cast<std::size_t>(state_counts_[static_cast<std::size_t>(component->index_)]);
     component->initialize(now, std::span<double>(state + component->state_offset_, size));
     component->compute_outputs(now);
   }
-  evaluate_outputs(time, time, state);
+  evaluate_outputs(context, time, time, state);
 }
 
-void System::evaluate_outputs(double time, double signal_time, const double* state) {
-  const Evaluation now = evaluation(time, signal_time, state);
+void System::evaluate_outputs(Context& context, double time, double signal_time,
+                              const double* state) const {
+  const Evaluation now = evaluation(context, time, signal_time, state);
   for (const Component* component : evaluation_order_) component->compute_outputs(now);
   for (const Component* component : evaluation_order_) component->compute_observations(now);
 }
 
-void System::evaluate_derivatives(double time, double signal_time, const double* state,
-                                  double* derivatives) {
-  const Evaluation now = evaluation(time, signal_time, state);
+void System::evaluate_derivatives(Context& context, double time, double signal_time,
+                                  const double* state, double* derivatives) const {
+  const Evaluation now = evaluation(context, time, signal_time, state);
   for (const Component* component : evaluation_order_) component->compute_outputs(now);
   for (const Component* component : evaluation_order_) {
     component->compute_derivatives(now, derivatives);
   }
 }
 
-double System::next_breakpoint_after(double time) const {
+double System::next_breakpoint_after(const Context& context, double time) const {
+  const Evaluation now = evaluation(context, time, time, nullptr);
   double next = kNoBreakpoint;
   for (const auto& component : components_) {
-    next = std::min(next, component->next_breakpoint_after(time));
+    next = std::min(next, component->next_breakpoint_after(now));
   }
   return next;
 }
 
-void System::at_breakpoint(double time, double left_limit, const double* state) {
-  evaluate_outputs(time, left_limit, state);
-  const Evaluation now = evaluation(time, left_limit, state);
+void System::at_breakpoint(Context& context, double time, double left_limit,
+                           const double* state) const {
+  evaluate_outputs(context, time, left_limit, state);
+  const Evaluation now = evaluation(context, time, left_limit, state);
   // Instruments first (a drive that measures as well as heats publishes its reading), then each
   // component republishes its outputs right after acting, so a controller sampling after an
   // estimator at the same instant sees the new estimate.
-  for (Component* component : sampling_order_) {
+  for (const Component* component : sampling_order_) {
     component->sense(now);
     component->compute_outputs(now);
     component->compute_observations(now);
   }
-  for (Component* component : sampling_order_) {
+  for (const Component* component : sampling_order_) {
     component->at_breakpoint(now);
     component->compute_outputs(now);
     component->compute_observations(now);
   }
-  evaluate_outputs(time, left_limit, state);
+  evaluate_outputs(context, time, left_limit, state);
 }
 
-void System::adapt_tolerances(double* absolute, double* relative) const {
+void System::adapt_tolerances(const Context& context, double* absolute, double* relative) const {
+  const Evaluation now = evaluation(context, 0.0, 0.0, nullptr);
   for (std::size_t c = 0; c < components_.size(); ++c) {
     const auto& component = components_[c];
     const auto size = static_cast<std::size_t>(state_counts_[c]);
     if (size == 0) continue;
-    component->adapt_tolerances(std::span<double>(absolute + component->state_offset_, size),
+    component->adapt_tolerances(now, std::span<double>(absolute + component->state_offset_, size),
                                 std::span<double>(relative + component->state_offset_, size));
   }
 }
@@ -221,8 +408,9 @@ std::vector<int> System::event_directions() const {
   return directions;
 }
 
-void System::evaluate_events(double time, double signal_time, const double* state, double* values) {
-  const Evaluation now = evaluation(time, signal_time, state);
+void System::evaluate_events(Context& context, double time, double signal_time, const double* state,
+                             double* values) const {
+  const Evaluation now = evaluation(context, time, signal_time, state);
   for (const Component* component : evaluation_order_) component->compute_outputs(now);
   for (std::size_t c = 0; c < components_.size(); ++c) {
     if (components_[c]->event_count() > 0)
@@ -230,9 +418,10 @@ void System::evaluate_events(double time, double signal_time, const double* stat
   }
 }
 
-void System::at_events(double time, double signal_time, const double* state, const int* flags) {
-  evaluate_outputs(time, signal_time, state);
-  const Evaluation now = evaluation(time, signal_time, state);
+void System::at_events(Context& context, double time, double signal_time, const double* state,
+                       const int* flags) const {
+  evaluate_outputs(context, time, signal_time, state);
+  const Evaluation now = evaluation(context, time, signal_time, state);
   for (std::size_t c = 0; c < components_.size(); ++c) {
     for (int k = 0; k < components_[c]->event_count(); ++k) {
       if (flags[event_offsets_[c] + k] != 0) components_[c]->at_event(k, now);
@@ -240,26 +429,28 @@ void System::at_events(double time, double signal_time, const double* state, con
   }
 }
 
-std::string System::check_component_contracts(double time, const double* state) {
+std::string System::check_component_contracts(Context& context, double time,
+                                              const double* state) const {
   const double sentinel = -123456.789;
-  std::vector<double> derivatives(static_cast<std::size_t>(state_size_));
-  const Evaluation now = evaluation(time, time, state);
+  std::vector<double>& signals = context.signals_;
+  std::vector<double> derivatives(static_cast<std::size_t>(state_size()));
+  const Evaluation now = evaluation(context, time, time, state);
   for (std::size_t c = 0; c < components_.size(); ++c) {
-    Component& component = *components_[c];
-    const std::string name = component.group() + "/" + component.kind();
+    const Component& component = *components_[c];
+    const std::string name = named(component);
     const auto outputs = component.outputs().size();
     const auto begin = static_cast<std::size_t>(component.output_offset_);
-    evaluate_outputs(time, time, state);  // inputs as they would be
-    const std::vector<double> before = signals_;
-    for (std::size_t i = begin; i < begin + outputs; ++i) signals_[i] = sentinel;
+    evaluate_outputs(context, time, time, state);  // inputs as they would be
+    const std::vector<double> before = signals;
+    for (std::size_t i = begin; i < begin + outputs; ++i) signals[i] = sentinel;
     component.compute_outputs(now);
     component.compute_observations(now);
-    for (std::size_t i = 0; i < signals_.size(); ++i) {
+    for (std::size_t i = 0; i < signals.size(); ++i) {
       const bool own = i >= begin && i < begin + outputs;
-      if (!own && signals_[i] != before[i] && !(std::isnan(signals_[i]) && std::isnan(before[i]))) {
+      if (!own && signals[i] != before[i] && !(std::isnan(signals[i]) && std::isnan(before[i]))) {
         return name + " wrote signal " + std::to_string(i) + ", outside its outputs";
       }
-      if (own && signals_[i] == sentinel)
+      if (own && signals[i] == sentinel)
         return name + " did not write its output " + std::to_string(i - begin);
     }
     std::fill(derivatives.begin(), derivatives.end(), sentinel);
@@ -274,14 +465,14 @@ std::string System::check_component_contracts(double time, const double* state) 
         return name + " did not write its derivative " + std::to_string(i - first);
     }
   }
-  evaluate_outputs(time, time, state);
+  evaluate_outputs(context, time, time, state);
   return {};
 }
 
 SparsityPattern System::jacobian_pattern() const {
   // States each signal depends on, through chains of direct feedthrough.
-  std::vector<std::vector<int>> signal_states(signals_.size());
-  std::vector<char> resolved(signals_.size(), 0);
+  std::vector<std::vector<int>> signal_states(static_cast<std::size_t>(signal_count_));
+  std::vector<char> resolved(static_cast<std::size_t>(signal_count_), 0);
   auto resolve = [&](auto&& self, int signal) -> const std::vector<int>& {
     auto index = static_cast<std::size_t>(signal);
     if (resolved[index]) return signal_states[index];
@@ -291,27 +482,36 @@ SparsityPattern System::jacobian_pattern() const {
     std::set<int> collected;
     for (int s : deps.states) collected.insert(owner.state_offset_ + s);
     for (int i : deps.inputs) {
-      const auto& upstream = self(self, owner.input_signal_index_[static_cast<std::size_t>(i)]);
-      collected.insert(upstream.begin(), upstream.end());
+      const auto input = static_cast<std::size_t>(i);
+      for (int k = 0; k < owner.fan_in_count_[input]; ++k) {
+        const auto& upstream = self(
+            self, owner.fan_in_sources_[static_cast<std::size_t>(owner.fan_in_begin_[input] + k)]);
+        collected.insert(upstream.begin(), upstream.end());
+      }
     }
     signal_states[index].assign(collected.begin(), collected.end());
     return signal_states[index];
   };
 
   SparsityPattern pattern;
-  pattern.size = state_size_;
-  pattern.rows_of_column.assign(static_cast<std::size_t>(state_size_), {});
-  for (const auto& component : components_) {
-    const int local_states = static_cast<int>(component->states().size());
-    for (int s = 0; s < local_states; ++s) {
-      const int row = component->state_offset_ + s;
-      const auto deps = component->derivative_dependencies(s);
+  pattern.size = state_size();
+  pattern.rows_of_column.assign(static_cast<std::size_t>(state_size()), {});
+  for (std::size_t c = 0; c < components_.size(); ++c) {
+    const Component& component = *components_[c];
+    for (int s = 0; s < state_counts_[c]; ++s) {
+      const int row = component.state_offset_ + s;
+      const auto deps = component.derivative_dependencies(s);
       std::set<int> columns;
-      for (int d : deps.states) columns.insert(component->state_offset_ + d);
+      for (int d : deps.states) columns.insert(component.state_offset_ + d);
       for (int i : deps.inputs) {
-        const auto& upstream =
-            resolve(resolve, component->input_signal_index_[static_cast<std::size_t>(i)]);
-        columns.insert(upstream.begin(), upstream.end());
+        const auto input = static_cast<std::size_t>(i);
+        for (int k = 0; k < component.fan_in_count_[input]; ++k) {
+          const auto& upstream = resolve(
+              resolve,
+              component
+                  .fan_in_sources_[static_cast<std::size_t>(component.fan_in_begin_[input] + k)]);
+          columns.insert(upstream.begin(), upstream.end());
+        }
       }
       columns.insert(row);  // the diagonal is always present in I - gamma J
       for (int column : columns)

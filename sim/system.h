@@ -1,14 +1,19 @@
 #pragma once
 
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "sim/component.h"
 #include "sim/sparsity.h"
 
 namespace tcpmsim {
+
+class Context;
 
 // Where a named quantity lives after assembly.
 struct StateInfo {
@@ -26,15 +31,140 @@ struct ChannelInfo {
   bool observed;
 };
 
-// Assembles components into one ODE system y' = f(t, y). Owns the components, assigns each its
-// slice of the state vector and of the signal (output) vector, wires inputs to outputs and
-// evaluates everything in an order that respects direct feedthrough.
+// A numeric parameter of the assembled model: a component's, or one of the signals a component
+// applies. A derived parameter follows others by a rule and cannot be set itself.
+struct ParameterInfo {
+  ParameterDeclaration declaration;
+  const Component* owner;
+  int signal_slot = -1;      // >= 0: a parameter of that prescribed signal
+  std::string derived_from;  // non-empty: how it is derived
+};
+
+// A prescribed signal of the assembled model, with its parameters' place in the parameter list.
+struct SignalSlot {
+  std::string group;
+  std::string name;
+  std::string unit;
+  const Signal* signal;  // as built
+  const Component* owner;
+  int first_parameter = 0;
+  int parameter_count = 0;
+};
+
+// A rule that sets a derived parameter from a prepared context (other parameters, signals).
+using ParameterRule = std::function<double(const Context&)>;
+// A condition between parameters of different components: the problem, or "".
+using ParameterConstraint = std::function<std::string(const Context&)>;
+
+class SystemBuilder;
+
+// Components assembled into one ODE system y' = f(t, y). The System owns the components,
+// assigns each its slice of the state vector, of the output vector and of the parameter vector,
+// wires inputs to outputs and evaluates everything in an order that respects direct
+// feedthrough. It is immutable: every evaluation takes the run Context that holds what a run
+// changes (state, outputs, parameters, the components' run states), so one System can serve
+// many runs at once, each with its own context.
 class System {
  public:
-  System() = default;
   System(const System&) = delete;
   System& operator=(const System&) = delete;
 
+  int state_size() const { return static_cast<int>(states_.size()); }
+  int signal_size() const { return signal_count_; }
+  const std::vector<StateInfo>& states() const { return states_; }
+  const std::vector<ChannelInfo>& channels() const { return channels_; }
+  const std::vector<std::unique_ptr<Component>>& components() const { return components_; }
+  const std::vector<ParameterInfo>& parameters() const { return parameters_; }
+  const std::vector<SignalSlot>& signal_slots() const { return signal_slots_; }
+  int signal_index(std::string_view output) const;                  // "group.name"; -1 if absent
+  std::optional<int> parameter_index(std::string_view path) const;  // "muscle.mechanics.k2"
+  std::optional<int> signal_slot(std::string_view group, std::string_view name) const;
+
+  // The first component of type T, or nullptr.
+  template <typename T>
+  const T* find() const {
+    for (const auto& component : components_) {
+      if (const auto* found = dynamic_cast<const T*>(component.get())) return found;
+    }
+    return nullptr;
+  }
+
+  // Makes the context ready for a run: signals rebuilt where their parameters changed, derived
+  // parameters computed, conditions checked (ParameterError), run states created afresh.
+  void prepare(Context& context) const;
+  // prepare(), then the initial state.
+  void initialize(Context& context, double time, double* state) const;
+  // Computes every output, observed ones included; afterwards context.signals() holds them.
+  void evaluate_outputs(Context& context, double time, double signal_time,
+                        const double* state) const;
+  // f(t, y). Allocation-free.
+  void evaluate_derivatives(Context& context, double time, double signal_time, const double* state,
+                            double* derivatives) const;
+
+  double next_breakpoint_after(const Context& context, double time) const;
+  // Lets sampled components act at a breakpoint. Outputs are recomputed with signals sampled
+  // at `left_limit` (just before the instant) first, so a controller samples what was true
+  // just before it acts.
+  void at_breakpoint(Context& context, double time, double left_limit, const double* state) const;
+
+  // Lets components adapt per-state tolerances; both arrays hold the configured ones on entry.
+  void adapt_tolerances(const Context& context, double* absolute, double* relative) const;
+
+  // Events: all components' zero-crossing functions, concatenated.
+  int event_count() const { return event_count_; }
+  std::vector<int> event_directions() const;
+  void evaluate_events(Context& context, double time, double signal_time, const double* state,
+                       double* values) const;
+  // Tells the owners of the crossed events (flags[k] != 0) where they are.
+  void at_events(Context& context, double time, double signal_time, const double* state,
+                 const int* flags) const;
+
+  // Self-check for tests: every component, evaluated at (time, state), writes exactly its own
+  // outputs and derivatives and nothing else. Returns a description of the first violation,
+  // or an empty string.
+  std::string check_component_contracts(Context& context, double time, const double* state) const;
+
+  // Structural non-zeros of df/dy (row = derivative, column = state).
+  SparsityPattern jacobian_pattern() const;
+
+ private:
+  friend class SystemBuilder;
+  friend class Context;
+  System() = default;
+  Evaluation evaluation(const Context& context, double time, double signal_time,
+                        const double* state) const;
+  void assign_slices();
+  void wire(const SystemBuilder& builder);
+  void order_by_feedthrough();
+  void collect_parameters(const SystemBuilder& builder);
+
+  std::vector<std::unique_ptr<Component>> components_;
+  std::vector<std::vector<InputDeclaration>> inputs_;  // per component, as declared
+  std::vector<int> state_counts_;                      // per component
+  std::vector<int> parameter_counts_;                  // per component
+  std::vector<Component*> evaluation_order_;
+  std::vector<Component*> sampling_order_;
+  std::vector<int> event_offsets_;  // per component
+  int event_count_ = 0;
+  std::vector<StateInfo> states_;
+  std::vector<ChannelInfo> channels_;
+  std::unordered_map<std::string, int> channel_by_name_;  // "group.name" -> channel
+  std::vector<int> signal_owner_;                         // component index that writes each signal
+  int signal_count_ = 0;
+  std::vector<ParameterInfo> parameters_;
+  std::unordered_map<std::string, int> parameter_by_path_;
+  std::vector<SignalSlot> signal_slots_;
+  struct Derivation {
+    int parameter;
+    ParameterRule rule;
+  };
+  std::vector<Derivation> derivations_;
+  std::vector<ParameterConstraint> constraints_;
+};
+
+// Builds a System: components are added, wired by name and assembled once.
+class SystemBuilder {
+ public:
   template <typename T>
   T& add(std::unique_ptr<T> component) {
     T& reference = *component;
@@ -42,85 +172,49 @@ class System {
     return reference;
   }
 
-  // Connects `consumer`'s input `input_name` to the output "group.name".
+  // Connects `consumer`'s input `input_name` to the output "group.name". A fan-in input may be
+  // connected to several outputs, in order.
   void connect(const Component& consumer, std::string_view input_name,
                std::string_view source_output);
+  // Names a component's input as a port of its instance ("left.power"), so that whoever
+  // drives the instance need not know its parts.
+  void export_input(std::string_view port, const Component& consumer, std::string_view input_name);
+  // Connects an exported port to the output "group.name".
+  void connect(std::string_view port, std::string_view source_output);
+  bool has_port(std::string_view port) const;
+
+  // Makes the parameter `path` follow `rule`, evaluated when a run starts; `explanation` says
+  // from what ("1 / drive.pwm_frequency").
+  void derive(std::string path, ParameterRule rule, std::string explanation);
+  void constrain(ParameterConstraint constraint);
 
   // Resolves offsets and connections and fixes the evaluation order. Throws std::logic_error on
-  // an unconnected input, an unknown output, a duplicate output or an algebraic loop.
-  void assemble();
-
-  int state_size() const { return state_size_; }
-  int signal_size() const { return static_cast<int>(signals_.size()); }
-  const std::vector<StateInfo>& states() const { return states_; }
-  const std::vector<ChannelInfo>& channels() const { return channels_; }
-  const std::vector<std::unique_ptr<Component>>& components() const { return components_; }
-  int signal_index(std::string_view output) const;  // -1 if absent
-
-  // The first component of type T, or nullptr. Like components(), it hands out the components
-  // themselves: an analysis calibrates an estimator between runs through it.
-  template <typename T>
-  T* find() const {
-    for (const auto& component : components_) {
-      if (auto* found = dynamic_cast<T*>(component.get())) return found;
-    }
-    return nullptr;
-  }
-
-  void initialize(double time, double* state);
-  // Computes every output, observed ones included; afterwards signals() holds them.
-  void evaluate_outputs(double time, double signal_time, const double* state);
-  // f(t, y). Allocation-free.
-  void evaluate_derivatives(double time, double signal_time, const double* state,
-                            double* derivatives);
-  const std::vector<double>& signals() const { return signals_; }
-
-  double next_breakpoint_after(double time) const;
-  // Lets sampled components act at a breakpoint. Outputs are recomputed with signals sampled
-  // at `left_limit` (just before the instant) first, so a controller samples what was true
-  // just before it acts.
-  void at_breakpoint(double time, double left_limit, const double* state);
-
-  // Lets components adapt per-state tolerances; both arrays hold the configured ones on entry.
-  void adapt_tolerances(double* absolute, double* relative) const;
-
-  // Events: all components' zero-crossing functions, concatenated.
-  int event_count() const { return event_count_; }
-  std::vector<int> event_directions() const;
-  void evaluate_events(double time, double signal_time, const double* state, double* values);
-  // Tells the owners of the crossed events (flags[k] != 0) where they are.
-  void at_events(double time, double signal_time, const double* state, const int* flags);
-
-  // Self-check for tests: every component, evaluated at (time, state), writes exactly its own
-  // outputs and derivatives and nothing else. Returns a description of the first violation,
-  // or an empty string.
-  std::string check_component_contracts(double time, const double* state);
-
-  // Structural non-zeros of df/dy (row = derivative, column = state).
-  SparsityPattern jacobian_pattern() const;
+  // an unconnected input, an unknown output, a duplicate output, state or parameter, or an
+  // algebraic loop. The builder is empty afterwards.
+  std::shared_ptr<const System> build();
 
  private:
+  friend class System;
   struct Connection {
     const Component* consumer;
     std::string input;
     std::string source;
   };
-  Evaluation evaluation(double time, double signal_time, const double* state);
-  void order_by_feedthrough();
-
+  struct Export {
+    const Component* consumer;
+    std::string input;
+  };
   std::vector<std::unique_ptr<Component>> components_;
-  std::vector<Component*> evaluation_order_;
-  std::vector<Component*> sampling_order_;
-  std::vector<int> event_offsets_;  // per component, in components_ order
-  std::vector<int> state_counts_;   // per component, in components_ order
-  int event_count_ = 0;
   std::vector<Connection> connections_;
-  std::vector<StateInfo> states_;
-  std::vector<ChannelInfo> channels_;
-  std::vector<int> signal_owner_;  // component index that writes each signal
-  std::vector<double> signals_;
-  int state_size_ = 0;
-  bool assembled_ = false;
+  std::unordered_map<std::string, Export> ports_;
+  std::vector<std::pair<std::string, std::string>> port_connections_;
+  struct PendingDerivation {
+    std::string path;
+    ParameterRule rule;
+    std::string explanation;
+  };
+  std::vector<PendingDerivation> derivations_;
+  std::vector<ParameterConstraint> constraints_;
 };
 
 }  // namespace tcpmsim

@@ -50,9 +50,10 @@ TEST_CASE("In every scenario each component writes exactly its own outputs and d
     if (entry.path().parent_path().filename() == "springs") continue;
     INFO(entry.path().filename().string());
     Scenario scenario = load_scenario(entry.path().string(), {}, shared_units());
-    std::vector<double> state(static_cast<std::size_t>(scenario.system->state_size()));
-    scenario.system->initialize(0.0, state.data());
-    scenario.system->at_breakpoint(0.0, 0.0, state.data());
-    CHECK(scenario.system->check_component_contracts(0.0, state.data()) == "");
+    Context context = scenario.make_context();
+    double* state = context.state().data();
+    scenario.system->initialize(context, 0.0, state);
+    scenario.system->at_breakpoint(context, 0.0, 0.0, state);
+    CHECK(scenario.system->check_component_contracts(context, 0.0, state) == "");
   }
 }

@@ -11,6 +11,7 @@
 #include "analysis/describing_function.h"
 #include "controllers/pid_controller.h"
 #include "controllers/self_sensing_estimator.h"
+#include "models/sls_mechanics.h"
 #include "models/thermal_force.h"
 #include "signals/constant_signal.h"
 #include "tests/support/test_components.h"
@@ -80,11 +81,10 @@ MemorySink run_deflection_loop(const PidGains& gains, double duration) {
   thermal.initial_thermal_force =  // start at the equilibrium for 20 mm
       0.40 - kMechanics.k1 * 20e-3 - kMechanics.force_offset;
 
-  auto system = std::make_unique<System>();
+  auto system = std::make_unique<SystemBuilder>();
   system->add(std::make_unique<SignalSource>("load", std::make_unique<ConstantSignal>(0.40)));
   auto& heating = system->add(std::make_unique<ReducedThermalForce>("muscle", thermal));
-  auto& mechanics =
-      system->add(std::make_unique<SlsMechanics>("muscle", kMechanics, SlsMechanics::Drive::force));
+  auto& mechanics = system->add(std::make_unique<SlsMechanics>("muscle", kMechanics));
   auto& sensor = system->add(std::make_unique<DecayTimeSensor>(p.inductance));
   auto& estimator = system->add(std::make_unique<SelfSensingEstimator>("estimator", p, kPeriod));
   auto& controller = system->add(
@@ -97,11 +97,12 @@ MemorySink run_deflection_loop(const PidGains& gains, double duration) {
   system->connect(estimator, "inductance_measure", "sensor.inductance_measure");
   system->connect(estimator, "power_command", "controller.power_command");
   system->connect(controller, "estimate", "estimator.deflection");
-  system->assemble();
+  const auto assembled = system->build();
   SolverSettings solver;
   solver.relative_tolerance = 1e-8;
-  Integrator integrator(*system, solver);
-  MemorySink sink(*system);
+  Context context(*assembled);
+  Integrator integrator(*assembled, context, solver);
+  MemorySink sink(*assembled);
   integrator.run(0.0, duration, kPeriod, sink);
   return sink;
 }

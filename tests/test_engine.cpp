@@ -64,10 +64,11 @@ class Collector final : public OutputSink {
   std::vector<double> times, values;
 };
 
-std::string failure_of(System& system, double t_end) {
-  system.assemble();
+std::string failure_of(SystemBuilder& builder, double t_end) {
+  const auto system = builder.build();
+  Context context(*system);
   Collector sink;
-  Integrator integrator(system, {});
+  Integrator integrator(*system, context, {});
   try {
     integrator.run(0.0, t_end, 0.1, sink);
   } catch (const SolverFailure& failure) {
@@ -80,39 +81,47 @@ std::string failure_of(System& system, double t_end) {
 
 TEST_CASE("An unconnected input, an unknown source and an algebraic loop are assembly errors") {
   {
-    System system;
+    SystemBuilder system;
     system.add(std::make_unique<Relay>("a", true));
-    CHECK_THROWS_WITH(system.assemble(), "a/relay input 'in' is not connected");
+    CHECK_THROWS_WITH(system.build(), "a/relay input 'in' is not connected");
   }
   {
-    System system;
+    SystemBuilder system;
     auto& relay = system.add(std::make_unique<Relay>("a", true));
     system.connect(relay, "in", "nowhere.value");
-    CHECK_THROWS_WITH(system.assemble(),
-                      "no component publishes 'nowhere.value' (needed by a/relay)");
+    CHECK_THROWS_WITH(system.build(), "no component publishes 'nowhere.value' (needed by a/relay)");
   }
   {
-    System system;
+    SystemBuilder system;
     auto& a = system.add(std::make_unique<Relay>("a", true));
     auto& b = system.add(std::make_unique<Relay>("b", true));
     system.connect(a, "in", "b.value");
     system.connect(b, "in", "a.value");
-    CHECK_THROWS_WITH(system.assemble(),
+    CHECK_THROWS_WITH(system.build(),
                       "algebraic loop through direct-feedthrough inputs: a/relay b/relay");
+  }
+  {
+    SystemBuilder system;
+    system.add(std::make_unique<TestState>("a", TestState::Law::decay, 1.0));
+    system.add(std::make_unique<TestState>("b", TestState::Law::decay, 1.0));
+    auto& relay = system.add(std::make_unique<Relay>("c", true));
+    system.connect(relay, "in", "a.value");
+    system.connect(relay, "in", "b.value");
+    CHECK_THROWS_WITH(system.build(), "c/relay input 'in' takes one source, but 2 are connected");
   }
 }
 
 TEST_CASE("Components are evaluated after the outputs they read through feedthrough") {
-  System system;
-  auto& last = system.add(std::make_unique<Relay>("c", true));  // added first, must run last
-  auto& middle = system.add(std::make_unique<Relay>("b", true));
-  system.add(std::make_unique<TestState>("a", TestState::Law::decay, 2.0));
-  system.connect(last, "in", "b.value");
-  system.connect(middle, "in", "a.value");
-  system.assemble();
-  std::vector<double> state(1);
-  system.initialize(0.0, state.data());
-  CHECK(system.signals()[static_cast<std::size_t>(system.signal_index("c.value"))] == 2.0);
+  SystemBuilder builder;
+  auto& last = builder.add(std::make_unique<Relay>("c", true));  // added first, must run last
+  auto& middle = builder.add(std::make_unique<Relay>("b", true));
+  builder.add(std::make_unique<TestState>("a", TestState::Law::decay, 2.0));
+  builder.connect(last, "in", "b.value");
+  builder.connect(middle, "in", "a.value");
+  const auto system = builder.build();
+  Context context(*system);
+  system->initialize(context, 0.0, context.state().data());
+  CHECK(context.signals()[static_cast<std::size_t>(system->signal_index("c.value"))] == 2.0);
 }
 
 TEST_CASE("A cycle that passes through a non-feedthrough input is not a loop") {
@@ -177,7 +186,7 @@ TEST_CASE("The integrator stops at every breakpoint and counts one segment per s
 }
 
 TEST_CASE("A non-finite derivative fails with the CVODE flag, the time and the component") {
-  System system;
+  SystemBuilder system;
   system.add(std::make_unique<TestState>("test", TestState::Law::nan_after, 1.0, 0.5));
   const std::string message = failure_of(system, 2.0);
   CHECK_THAT(message,
@@ -189,7 +198,7 @@ TEST_CASE("A non-finite derivative fails with the CVODE flag, the time and the c
 }
 
 TEST_CASE("A solution that blows up fails naming the worst state entry") {
-  System system;
+  SystemBuilder system;
   system.add(std::make_unique<TestState>("test", TestState::Law::blowup, 1.0));
   const std::string message = failure_of(system, 2.0);  // y = 1/(1 - t) leaves at t = 1
   CHECK_THAT(message,
@@ -230,8 +239,13 @@ TEST_CASE("Per-state absolute tolerances from the scenario reach the solver, in 
 namespace {
 
 // Publishes how many samples it has taken; the "controller" copy reads it at the same instant.
+// Its sample times are kept in its run state.
 class Counter final : public SampledComponent {
  public:
+  struct Run final : RunState {
+    double count = 0, seen = -1;
+    std::vector<double> times;
+  };
   Counter(std::string group, SamplingStage stage, double period)
       : SampledComponent(std::move(group), "counter", period, stage) {}
   std::vector<OutputDeclaration> outputs() const override {
@@ -241,29 +255,35 @@ class Counter final : public SampledComponent {
     if (sampling_stage() == SamplingStage::controller) return {{"other", false, true}};
     return {};
   }
-  void compute_outputs(const Evaluation& e) const override {
-    set_output(e, 0, count_);
-    set_output(e, 1, seen_);
+  std::unique_ptr<RunState> create_run_state(const RunSetup&) const override {
+    return std::make_unique<Run>();
   }
-  std::vector<double> times;
+  void compute_outputs(const Evaluation& e) const override {
+    set_output(e, 0, run_state<Run>(e).count);
+    set_output(e, 1, run_state<Run>(e).seen);
+  }
 
  protected:
-  void sample(const Evaluation& e, long) override {
-    ++count_;
-    if (sampling_stage() == SamplingStage::controller) seen_ = input(e, 0);
-    times.push_back(e.time);
+  void sample(const Evaluation& e, long) const override {
+    Run& run = mutable_run_state<Run>(e);
+    ++run.count;
+    if (sampling_stage() == SamplingStage::controller) run.seen = input(e, 0);
+    run.times.push_back(e.time);
   }
-
- private:
-  double count_ = 0, seen_ = -1;
 };
 
 // Records where y = -y crosses a level.
 class Crossing final : public Component {
  public:
+  struct Run final : RunState {
+    std::vector<double> crossed_at;
+  };
   explicit Crossing(double level) : Component("crossing", "crossing"), level_(level) {}
   std::vector<StateDeclaration> states() const override { return {{"value", "1", 1e-12}}; }
   std::vector<OutputDeclaration> outputs() const override { return {{"value", "1"}}; }
+  std::unique_ptr<RunState> create_run_state(const RunSetup&) const override {
+    return std::make_unique<Run>();
+  }
   void initialize(const Evaluation&, std::span<double> own) const override { own[0] = 1.0; }
   void compute_outputs(const Evaluation& e) const override { set_output(e, 0, state(e, 0)); }
   void compute_derivatives(const Evaluation& e, double* d) const override {
@@ -274,8 +294,9 @@ class Crossing final : public Component {
   void event_functions(const Evaluation& e, double* g) const override {
     g[0] = state(e, 0) - level_;
   }
-  void at_event(int, const Evaluation& e) override { crossed_at.push_back(e.time); }
-  std::vector<double> crossed_at;
+  void at_event(int, const Evaluation& e) const override {
+    mutable_run_state<Run>(e).crossed_at.push_back(e.time);
+  }
 
  private:
   double level_;
@@ -284,34 +305,38 @@ class Crossing final : public Component {
 }  // namespace
 
 TEST_CASE("Sampled components act at the start and every period, estimators before controllers") {
-  System system;
-  system.add(std::make_unique<TestState>("plant", TestState::Law::decay, 1.0));
-  auto& controller = system.add(
+  SystemBuilder builder;
+  builder.add(std::make_unique<TestState>("plant", TestState::Law::decay, 1.0));
+  auto& controller = builder.add(
       std::make_unique<Counter>("controller", Component::SamplingStage::controller, 0.05));
-  auto& estimator =
-      system.add(std::make_unique<Counter>("estimator", Component::SamplingStage::estimator, 0.05));
-  system.connect(controller, "other", "estimator.count");
-  system.assemble();
+  const auto& estimator = builder.add(
+      std::make_unique<Counter>("estimator", Component::SamplingStage::estimator, 0.05));
+  builder.connect(controller, "other", "estimator.count");
+  const auto system = builder.build();
+  Context context(*system);
   Collector sink;
-  Integrator integrator(system, {});
+  Integrator integrator(*system, context, {});
   const auto statistics = integrator.run(0.0, 1.0, 0.5, sink);
-  REQUIRE(estimator.times.size() == 20);  // 0, 0.05, ..., 0.95; the end is not a sample instant
-  CHECK(estimator.times[7] == 7 * 0.05);
+  const auto& times = context.run_state<Counter::Run>(estimator).times;
+  REQUIRE(times.size() == 20);  // 0, 0.05, ..., 0.95; the end is not a sample instant
+  CHECK(times[7] == 7 * 0.05);
   CHECK(statistics.segments == 20);
   // At every instant the controller saw the estimator's count of that same instant.
-  CHECK(system.signals()[static_cast<std::size_t>(system.signal_index("controller.seen"))] == 20);
+  CHECK(context.signals()[static_cast<std::size_t>(system->signal_index("controller.seen"))] == 20);
 }
 
 TEST_CASE("A zero crossing is located to the solver's accuracy") {
-  System system;
-  auto& crossing = system.add(std::make_unique<Crossing>(0.5));
-  system.assemble();
+  SystemBuilder builder;
+  const auto& crossing = builder.add(std::make_unique<Crossing>(0.5));
+  const auto system = builder.build();
+  Context context(*system);
   Collector sink;
   SolverSettings settings;
   settings.relative_tolerance = 1e-10;
-  Integrator integrator(system, settings);
+  Integrator integrator(*system, context, settings);
   const auto statistics = integrator.run(0.0, 2.0, 0.1, sink);
-  REQUIRE(crossing.crossed_at.size() == 1);  // falling only, once
-  CHECK(crossing.crossed_at[0] == Approx(std::log(2.0)).epsilon(1e-8));
+  const auto& crossed_at = context.run_state<Crossing::Run>(crossing).crossed_at;
+  REQUIRE(crossed_at.size() == 1);  // falling only, once
+  CHECK(crossed_at[0] == Approx(std::log(2.0)).epsilon(1e-8));
   CHECK(statistics.events == 1);
 }

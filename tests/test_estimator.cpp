@@ -11,6 +11,7 @@
 #include "analysis/control_tasks.h"
 #include "controllers/discrete_filters.h"
 #include "controllers/self_sensing_estimator.h"
+#include "models/sls_mechanics.h"
 #include "models/thermal_force.h"
 #include "signals/piecewise_constant_signal.h"
 #include "signals/piecewise_linear_signal.h"
@@ -75,7 +76,7 @@ TEST_CASE("The median filter removes single spikes, and bursts up to half its wi
   // median outvotes up to 7 outliers.
   const auto p = thesis_estimator_parameters();
   const double level = measure_of(p, 20e-3);
-  SelfSensingEstimator estimator("estimator", p, kPeriod);
+  SelfSensingEstimation estimator(p, kPeriod);
   std::vector<double> raw;
   for (int k = 0; k < 120; ++k) {
     double value = level;
@@ -89,7 +90,7 @@ TEST_CASE("The median filter removes single spikes, and bursts up to half its wi
     CHECK(raw[std::size_t(k)] == Approx(20e-3).epsilon(1e-12));
   }
   // A burst longer than half the window gets through.
-  SelfSensingEstimator burst("estimator", p, kPeriod);
+  SelfSensingEstimation burst(p, kPeriod);
   double last = 0.0;
   for (int k = 0; k < 40; ++k)
     last = burst.process(k >= 20 ? level + 0.1e-6 : level, 1.0).raw_deflection;
@@ -105,7 +106,7 @@ TEST_CASE("The deflection estimate inverts (7.3) exactly on noise-free input") {
   // 1e-12 relative is a thousand times that rounding.
   const auto p = thesis_estimator_parameters();
   for (double x : {10e-3, 15e-3, 20e-3, 25e-3, 30e-3}) {
-    SelfSensingEstimator estimator("estimator", p, kPeriod);
+    SelfSensingEstimation estimator(p, kPeriod);
     SelfSensingEstimate estimate{};
     for (int k = 0; k < 40; ++k) estimate = estimator.process(measure_of(p, x), 1.0);
     CHECK(estimate.raw_deflection == Approx(x).epsilon(1e-12));
@@ -114,7 +115,7 @@ TEST_CASE("The deflection estimate inverts (7.3) exactly on noise-free input") {
     CHECK(estimator.model_deflection(measure_of(p, x)) == Approx(x).epsilon(1e-12));
   }
   // Sample by sample, without filters, on a moving deflection.
-  SelfSensingEstimator direct("estimator", unfiltered(p), kPeriod);
+  SelfSensingEstimation direct(unfiltered(p), kPeriod);
   for (int k = 0; k < 100; ++k) {
     const double x = 20e-3 + 8e-3 * std::sin(0.3 * k);
     CHECK(direct.process(measure_of(p, x), 1.0).deflection == Approx(x).epsilon(1e-12));
@@ -188,7 +189,7 @@ TEST_CASE("The discrete force model matches the continuous plant at the sample i
   // piecewise linear between sample instants. The estimator, without filters, must give the
   // plant's F, F_T and x at every sample, to the solver's accuracy.
   const auto p = unfiltered(thesis_estimator_parameters());
-  System system;
+  SystemBuilder system;
   system.add(std::make_unique<SignalSource>(
       "power", std::make_unique<PiecewiseConstantSignal>(1.0, std::vector<double>{2.0, 5.0, 8.5},
                                                          std::vector<double>{3.0, 0.1, 2.2})));
@@ -201,8 +202,7 @@ TEST_CASE("The discrete force model matches the continuous plant at the sample i
   thermal.cooling_rate = p.cooling_rate;
   thermal.ambient_temperature = 296.15;
   auto& heating = system.add(std::make_unique<ReducedThermalForce>("muscle", thermal));
-  auto& mechanics = system.add(
-      std::make_unique<SlsMechanics>("muscle", p.mechanics, SlsMechanics::Drive::deflection));
+  auto& mechanics = system.add(std::make_unique<SlsMechanics>("muscle", p.mechanics));
   auto& sensor = system.add(std::make_unique<DecayTimeSensor>(p.inductance));
   auto& estimator = system.add(std::make_unique<SelfSensingEstimator>("estimator", p, kPeriod));
   system.connect(heating, "power", "power.value");
@@ -211,11 +211,12 @@ TEST_CASE("The discrete force model matches the continuous plant at the sample i
   system.connect(sensor, "deflection", "muscle.deflection");
   system.connect(estimator, "inductance_measure", "sensor.inductance_measure");
   system.connect(estimator, "power_command", "power.value");
-  system.assemble();
+  const auto assembled = system.build();
   SolverSettings settings;
   settings.relative_tolerance = 1e-10;
-  Integrator integrator(system, settings);
-  MemorySink sink(system);
+  Context context(*assembled);
+  Integrator integrator(*assembled, context, settings);
+  MemorySink sink(*assembled);
   integrator.run(0.0, 10.0, kPeriod, sink);
 
   // Forces are below 0.6 N.
@@ -243,7 +244,7 @@ TEST_CASE("The discrete force model matches the continuous plant at the sample i
 
 TEST_CASE("Before the first usable L* the deflection and force are unknown; F_T is not") {
   const auto p = thesis_estimator_parameters();
-  SelfSensingEstimator estimator("estimator", p, kPeriod);
+  SelfSensingEstimation estimator(p, kPeriod);
   DiscreteThermalForce thermal(p.heating_gain, p.cooling_rate, kPeriod);
   // The Muscle Drive reports 0 before its first off-phase.
   auto estimate = estimator.process(0.0, 2.0);
@@ -263,7 +264,7 @@ TEST_CASE("Before the first usable L* the deflection and force are unknown; F_T 
   CHECK(estimate.force ==
         Approx(p.mechanics.k1 * 20e-3 + f_t + p.mechanics.force_offset).epsilon(1e-12));
   // A filtered L* at or below lambda_0 holds the last deflection; it is counted.
-  SelfSensingEstimator bare("estimator", unfiltered(p), kPeriod);
+  SelfSensingEstimation bare(unfiltered(p), kPeriod);
   bare.process(measure_of(p, 20e-3), 1.0);
   const auto held = bare.process(0.9 * p.inductance.lambda_0, 1.0);
   CHECK(held.raw_deflection == Approx(20e-3).epsilon(1e-12));
@@ -272,7 +273,7 @@ TEST_CASE("Before the first usable L* the deflection and force are unknown; F_T 
 
 TEST_CASE("Calibration offsets add to deflection and force without a velocity impulse") {
   const auto p = thesis_estimator_parameters();
-  SelfSensingEstimator estimator("estimator", p, kPeriod);
+  SelfSensingEstimation estimator(p, kPeriod);
   const double level = measure_of(p, 20e-3);
   for (int k = 0; k < 40; ++k) estimator.process(level, 1.0);
   const auto before = estimator.estimate();
@@ -302,7 +303,7 @@ estimator:
                                                 "estimator.yaml", {}, shared_units());
   const auto estimator = SelfSensingEstimator::from_config("estimator", root.at("estimator"), 0.05);
   root.reject_unknown_keys();
-  const auto& p = estimator->parameters();
+  const auto& p = estimator->defaults();
   CHECK(p.inductance.lambda_l == Approx(2.81e-9));
   CHECK(p.inductance.lambda_x == Approx(28.8e-3));
   CHECK(p.inductance.lambda_0 == Approx(0.433e-6));

@@ -102,8 +102,11 @@ TEST_CASE("Records longer than a chunk are written chunk by chunk without loss")
   Scenario scenario = scenario_from_text(physical_muscle_yaml(), {"drive.power=1 W"});
   const std::string path = temporary_path("chunks.h5");
   {
-    Hdf5Recorder recorder(path, *scenario.system, {}, 7);  // 1001 samples in chunks of 7
-    Integrator integrator(*scenario.system, scenario.solver);
+    Context context = scenario.make_context();
+    scenario.system->prepare(context);
+    // 1001 samples in chunks of 7
+    Hdf5Recorder recorder(path, *scenario.system, context, {}, 7);
+    Integrator integrator(*scenario.system, context, scenario.solver);
     recorder.finish(integrator.run(0.0, 100.0, 0.1, recorder));
   }
   const Trace expected = simulate(scenario);
@@ -131,7 +134,8 @@ TEST_CASE("An interrupted recording leaves no file behind") {
   Scenario scenario = scenario_from_text(physical_muscle_yaml());
   const std::string path = temporary_path("interrupted.h5");
   {
-    Hdf5Recorder recorder(path, *scenario.system, {});
+    Context context = scenario.make_context();
+    Hdf5Recorder recorder(path, *scenario.system, context, {});
     CHECK(std::filesystem::exists(partial_path(path)));
   }  // destroyed without finish(): as when an exception unwinds
   CHECK_FALSE(std::filesystem::exists(partial_path(path)));

@@ -41,21 +41,39 @@ class Idle final : public Component {
 // A fixed sequence of estimates, one per sample (NaN first, like an estimator without data).
 class ScriptedEstimator final : public SampledComponent {
  public:
+  struct Held final : RunState {
+    double value = std::numeric_limits<double>::quiet_NaN();
+  };
   explicit ScriptedEstimator(std::vector<double> values)
       : SampledComponent("estimator", "scripted", kPeriod, SamplingStage::estimator),
         values_(std::move(values)) {}
   std::vector<OutputDeclaration> outputs() const override { return {{"force", "N"}}; }
-  void compute_outputs(const Evaluation& e) const override { set_output(e, 0, held_); }
+  std::unique_ptr<RunState> create_run_state(const RunSetup&) const override {
+    return std::make_unique<Held>();
+  }
+  void compute_outputs(const Evaluation& e) const override {
+    set_output(e, 0, run_state<Held>(e).value);
+  }
 
  protected:
-  void sample(const Evaluation&, long index) override {
-    held_ = values_[std::min(values_.size() - 1, static_cast<std::size_t>(index))];
+  void sample(const Evaluation& e, long index) const override {
+    mutable_run_state<Held>(e).value =
+        values_[std::min(values_.size() - 1, static_cast<std::size_t>(index))];
   }
 
  private:
   std::vector<double> values_;
-  double held_ = std::numeric_limits<double>::quiet_NaN();
 };
+
+// Integrates an assembled test system from 0 to t_end, sampling every period.
+MemorySink run(SystemBuilder& builder, double t_end) {
+  const auto system = builder.build();
+  Context context(*system);
+  Integrator integrator(*system, context, {});
+  MemorySink sink(*system);
+  integrator.run(0.0, t_end, kPeriod, sink);
+  return sink;
+}
 
 std::vector<double> demands(DiscretePid& pid, const std::vector<double>& estimates,
                             std::vector<double>* commands = nullptr) {
@@ -207,7 +225,7 @@ TEST_CASE("The reference is sampled on the right of a step at the sample instant
 }
 
 TEST_CASE("The controller idles until the estimate is finite, then controls from that sample") {
-  System system;
+  SystemBuilder system;
   system.add(std::make_unique<Idle>());
   // NaN for three samples (the estimator waits for the Muscle Drive's first measurement).
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -217,10 +235,7 @@ TEST_CASE("The controller idles until the estimate is finite, then controls from
       system.add(std::make_unique<PidController>("controller", PidController::Target::force, s,
                                                  std::make_unique<ConstantSignal>(0.4), kPeriod));
   system.connect(controller, "estimate", "estimator.force");
-  system.assemble();
-  Integrator integrator(system, {});
-  MemorySink sink(system);
-  integrator.run(0.0, 0.3, kPeriod, sink);
+  const MemorySink sink = run(system, 0.3);
   const auto& command = sink["controller/power_command"];
   for (std::size_t k = 0; k < 3; ++k) CHECK(command[k] == 0.1);  // idle: P_min
   // Then e = 0.05 N: P_d = 100 * 0.05 = 5 W with an empty integral, saturated to 3.12 W.
@@ -236,7 +251,7 @@ TEST_CASE("Closed through the estimator, the controller sees the force of its pr
   const auto p = thesis_estimator_parameters();
   const double measure = p.inductance(20e-3, p.inductance.reference_temperature);
   auto control = settings(540.0, 1.0, 0.0, 0.10, 3.12);
-  System system;
+  SystemBuilder system;
   system.add(std::make_unique<Idle>());
   system.add(std::make_unique<SignalSource>("drive", std::make_unique<ConstantSignal>(measure)));
   auto& estimator = system.add(std::make_unique<SelfSensingEstimator>("estimator", p, kPeriod));
@@ -248,12 +263,9 @@ TEST_CASE("Closed through the estimator, the controller sees the force of its pr
   system.connect(estimator, "inductance_measure", "drive.value");
   system.connect(estimator, "power_command", "controller.power_command");
   system.connect(controller, "estimate", "estimator.force");
-  system.assemble();
-  Integrator integrator(system, {});
-  MemorySink sink(system);
-  integrator.run(0.0, 30.0, kPeriod, sink);
+  const MemorySink sink = run(system, 30.0);
 
-  SelfSensingEstimator offline_estimator("estimator", p, kPeriod);
+  SelfSensingEstimation offline_estimator(p, kPeriod);
   DiscretePid offline_pid(control, kPeriod);
   double command = control.power_min;  // held before the first sample
   for (std::size_t k = 0; k + 1 < sink.time.size(); ++k) {
@@ -287,7 +299,7 @@ controller:
   gains: {proportional: -1.08 W/mm, integral_time: 2.5 s, derivative_time: 0.625 s}
   power_limits: [0.10 W, 3.12 W]
 )");
-  const auto& d = deflection->law().settings();
+  const auto& d = deflection->defaults();
   CHECK(deflection->target() == PidController::Target::deflection);
   CHECK(d.gains.proportional == Approx(-1080.0));
   CHECK(d.gains.integral_time == 2.5);
@@ -299,8 +311,8 @@ controller:
   CHECK_FALSE(d.initial_power.has_value());
   CHECK(deflection->reference_at(20.0) == Approx(25e-3));
   CHECK(deflection->sampling_stage() == Component::SamplingStage::controller);
-  REQUIRE(deflection->signal_records().size() == 1);
-  CHECK(deflection->signal_records()[0].unit == "m");
+  REQUIRE(deflection->signals().size() == 1);
+  CHECK(deflection->signals()[0].unit == "m");
 
   const auto force = load(R"(
 controller:
@@ -312,7 +324,7 @@ controller:
   derivative_on: measurement
   initial_power: 1.4 W
 )");
-  const auto& f = force->law().settings();
+  const auto& f = force->defaults();
   CHECK(f.gains.proportional == Approx(540.0));
   CHECK(f.gains.derivative_time == 0.0);
   CHECK_FALSE(f.anti_windup);

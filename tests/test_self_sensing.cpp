@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "controllers/joule_drive.h"
+#include "models/laws/pwm_supply.h"
 #include "models/static_self_sensing.h"
 
 using namespace tcpmsim;
@@ -111,12 +111,8 @@ TEST_CASE("The inversion rejects measurements outside the model and an unobserva
 TEST_CASE("The drive's power law (7.2) reproduces the thesis' power limits") {
   // U_b = 7 V, R_b = 10.75 ohm, R_m = 10.18 ohm: P(1) = 4.31 W, P(0.85) = 3.12 W, P(0.15) = 0.10 W
   // (section 7.3.2). (7.2) gives 4.3165 W at D = 1: the thesis truncates rather than rounds.
-  JouleDriveParameters parameters;
-  parameters.mode = JouleDriveParameters::Mode::duty;
-  parameters.supply_voltage = 7.0;
-  parameters.series_resistance = 10.75 - 10.18;
-  const JouleDrive drive("drive", parameters, nullptr);
-  CHECK(drive.power_from_duty(1.00, 10.18) == Approx(4.31).margin(0.01));
-  CHECK(drive.power_from_duty(0.85, 10.18) == Approx(3.12).margin(0.005));
-  CHECK(drive.power_from_duty(0.15, 10.18) == Approx(0.10).margin(0.005));
+  const PwmSupply drive{7.0, 10.75 - 10.18};
+  CHECK(drive.power(1.00, 10.18) == Approx(4.31).margin(0.01));
+  CHECK(drive.power(0.85, 10.18) == Approx(3.12).margin(0.005));
+  CHECK(drive.power(0.15, 10.18) == Approx(0.10).margin(0.005));
 }

@@ -11,58 +11,6 @@
 namespace tcpmsim {
 
 // ---------------------------------------------------------------------------------------------
-// ValueCheck
-
-ValueCheck ValueCheck::positive() {
-  ValueCheck check;
-  check.lower_ = 0.0;
-  check.lower_open_ = true;
-  return check;
-}
-
-ValueCheck ValueCheck::non_negative() {
-  return at_least(0.0);
-}
-
-ValueCheck ValueCheck::at_least(double lower) {
-  ValueCheck check;
-  check.lower_ = lower;
-  return check;
-}
-
-ValueCheck ValueCheck::between(double lower, double upper) {
-  ValueCheck check;
-  check.lower_ = lower;
-  check.upper_ = upper;
-  return check;
-}
-
-ValueCheck ValueCheck::fraction() {
-  return between(0.0, 1.0);
-}
-
-bool ValueCheck::accepts(double value) const {
-  if (lower_open_ ? !(value > lower_) : !(value >= lower_)) return false;
-  return value <= upper_;
-}
-
-namespace {
-std::string number_text(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
-}  // namespace
-
-std::string ValueCheck::expectation(std::string_view unit) const {
-  const std::string in_unit = unit.empty() || unit == "1" ? "" : " in " + std::string(unit);
-  if (lower_open_ && lower_ == 0.0 && std::isinf(upper_)) return "a positive value" + in_unit;
-  if (lower_ == 0.0 && std::isinf(upper_)) return "a non-negative value" + in_unit;
-  if (std::isinf(upper_)) return "a value of at least " + number_text(lower_) + in_unit;
-  return "a value in [" + number_text(lower_) + ", " + number_text(upper_) + "]" + in_unit;
-}
-
-// ---------------------------------------------------------------------------------------------
 // Suggestions
 
 std::size_t edit_distance(std::string_view a, std::string_view b) {
@@ -103,9 +51,16 @@ struct ConfigDocument {
   std::map<std::string, std::set<std::string>> known_keys;     // mapping path -> asked keys
   std::set<std::string> consumed;
   std::shared_ptr<const UnitSystem> units;
+  std::map<std::string, std::string> parameter_prefixes;  // scenario path -> parameter path
 };
 
 namespace {
+
+std::string number_text(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
 
 std::string join(std::string_view path, std::string_view key) {
   return path.empty() ? std::string(key) : std::string(path) + "." + std::string(key);
@@ -283,6 +238,27 @@ SourceLocation ConfigNode::location() const {
   const auto mark = node_.Mark();
   if (mark.is_null()) return {document_->file, 0, 0, {}};
   return {document_->file, mark.line + 1, mark.column + 1, {}};
+}
+
+std::string ConfigNode::parameter_path() const {
+  // The longest renamed prefix of this path, found by trying each shorter prefix in turn.
+  const auto& prefixes = document_->parameter_prefixes;
+  if (!prefixes.empty()) {
+    for (std::size_t end = path_.size(); end > 0; --end) {
+      if (end < path_.size() && path_[end] != '.' && path_[end] != '[') continue;
+      const auto found = prefixes.find(path_.substr(0, end));
+      if (found != prefixes.end()) return found->second + path_.substr(end);
+    }
+  }
+  return path_;
+}
+
+std::string ConfigNode::parameter_path(std::string_view key) const {
+  return join(parameter_path(), key);
+}
+
+void ConfigNode::name_parameters(const std::string& prefix) const {
+  document_->parameter_prefixes[path_] = prefix;
 }
 
 void ConfigNode::fail(const std::string& problem) const {

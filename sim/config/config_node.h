@@ -12,27 +12,9 @@
 
 #include "sim/config/config_error.h"
 #include "sim/config/units.h"
+#include "sim/value_check.h"
 
 namespace tcpmsim {
-
-// A constraint a configured number must satisfy, with the words to explain it.
-class ValueCheck {
- public:
-  ValueCheck() = default;
-  static ValueCheck positive();
-  static ValueCheck non_negative();
-  static ValueCheck at_least(double lower);
-  static ValueCheck between(double lower, double upper);  // inclusive
-  static ValueCheck fraction();                           // [0, 1]
-  bool accepts(double value) const;
-  // "a positive value", "a value in [0, 1]", ... followed by " in <unit>" when given.
-  std::string expectation(std::string_view unit = "") const;
-
- private:
-  double lower_ = -std::numeric_limits<double>::infinity();
-  double upper_ = std::numeric_limits<double>::infinity();
-  bool lower_open_ = false;
-};
 
 struct ConfigDocument;
 
@@ -49,6 +31,13 @@ class ConfigNode {
                               std::shared_ptr<const UnitSystem> units);
 
   const std::string& path() const { return path_; }
+  // The path of this node, or of its child `key`, as a model parameter: the scenario path with
+  // each plural section's instance written by its name ("muscles.left.mechanics.k2" is
+  // "left.mechanics.k2"); see name_parameters.
+  std::string parameter_path() const;
+  std::string parameter_path(std::string_view key) const;
+  // Parameters under this node are addressed from `prefix` instead of this node's path.
+  void name_parameters(const std::string& prefix) const;
   SourceLocation location() const;
   [[noreturn]] void fail(const std::string& problem) const;
   const UnitSystem& units() const;

@@ -88,8 +88,8 @@ std::string Hdf5Recorder::failed_path(const std::string& path) {
   return failed.string();
 }
 
-Hdf5Recorder::Hdf5Recorder(std::string path, const System& system, const RecordMetadata& metadata,
-                           std::size_t chunk_samples)
+Hdf5Recorder::Hdf5Recorder(std::string path, const System& system, const Context& context,
+                           const RecordMetadata& metadata, std::size_t chunk_samples)
     : path_(std::move(path)), file_(std::make_unique<File>()), chunk_samples_(chunk_samples) {
   H5::Exception::dontPrint();
   create_parent_directories(path_);
@@ -119,13 +119,11 @@ Hdf5Recorder::Hdf5Recorder(std::string path, const System& system, const RecordM
   for (auto& buffer : buffers_) buffer.reserve(chunk_samples_);
 
   H5::Group inputs = file_->file.createGroup("/inputs");
-  for (const auto& component : system.components()) {
-    for (const auto& record : component->signal_records()) {
-      const std::string name = component->group() + "." + record.name;
-      H5::Group group = inputs.createGroup(name);
-      write_text_attribute(group, "units", record.unit);
-      write_description(group, record.signal->describe());
-    }
+  const auto& slots = system.signal_slots();
+  for (std::size_t s = 0; s < slots.size(); ++s) {
+    H5::Group group = inputs.createGroup(slots[s].group + "." + slots[s].name);
+    write_text_attribute(group, "units", slots[s].unit);
+    write_description(group, context.signal(static_cast<int>(s)).describe());
   }
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/context.h"
 #include "sim/integrator.h"
 #include "sim/system.h"
 
@@ -31,8 +32,9 @@ struct RecordMetadata {
 // status = "failed" and the reason.
 class Hdf5Recorder final : public OutputSink {
  public:
-  Hdf5Recorder(std::string path, const System& system, const RecordMetadata& metadata,
-               std::size_t chunk_samples = 4096);
+  // The record of a run of `system` in `context` (prepared: its signals are the run's).
+  Hdf5Recorder(std::string path, const System& system, const Context& context,
+               const RecordMetadata& metadata, std::size_t chunk_samples = 4096);
   ~Hdf5Recorder() override;
   Hdf5Recorder(const Hdf5Recorder&) = delete;
   Hdf5Recorder& operator=(const Hdf5Recorder&) = delete;

@@ -61,23 +61,25 @@ TEST_CASE("A closed loop's sample instants, events and tolerance adaptation allo
        {"configs/ch7_control/force_steps.yaml", "configs/ch7_control/deflection_sweep.yaml"}) {
     for (const char* fidelity : {"drive.fidelity=averaged", "drive.fidelity=switched"}) {
       Scenario scenario = load_scenario(source_path(config), {fidelity}, shared_units());
-      System& system = *scenario.system;
-      std::vector<double> state(static_cast<std::size_t>(system.state_size()));
+      const System& system = *scenario.system;
+      Context context = scenario.make_context();
+      std::vector<double>& state = context.state();
       std::vector<double> absolute(state.size(), 1e-6), relative(state.size(), 1e-6);
       std::vector<double> events(static_cast<std::size_t>(std::max(1, system.event_count())));
       std::vector<int> flags(events.size(), 1);
-      system.initialize(0.0, state.data());
-      system.at_breakpoint(0.0, 0.0, state.data());  // first samples: buffers may fill lazily
+      system.initialize(context, 0.0, state.data());
+      // first samples: buffers may fill lazily
+      system.at_breakpoint(context, 0.0, 0.0, state.data());
       const long before = allocations.load();
       for (int k = 1; k < 400; ++k) {
         const double t = 0.025 * k;  // sample instants and PWM edges in between
-        system.at_breakpoint(t, t, state.data());
-        system.adapt_tolerances(absolute.data(), relative.data());
+        system.at_breakpoint(context, t, t, state.data());
+        system.adapt_tolerances(context, absolute.data(), relative.data());
         if (system.event_count() > 0) {
-          system.evaluate_events(t, t, state.data(), events.data());
-          system.at_events(t, t, state.data(), flags.data());
+          system.evaluate_events(context, t, t, state.data(), events.data());
+          system.at_events(context, t, t, state.data(), flags.data());
         }
-        (void)system.next_breakpoint_after(t);
+        (void)system.next_breakpoint_after(context, t);
       }
       const long allocated = allocations.load() - before;
       INFO(config << " " << fidelity);
@@ -90,16 +92,17 @@ TEST_CASE("Evaluating the right-hand side and the outputs allocates nothing") {
   for (const char* config :
        {"configs/ch7_identification.yaml", "configs/ch6_static_staircase.yaml"}) {
     Scenario scenario = load_scenario(source_path(config), {}, shared_units());
-    System& system = *scenario.system;
-    std::vector<double> state(static_cast<std::size_t>(system.state_size()));
+    const System& system = *scenario.system;
+    Context context = scenario.make_context();
+    std::vector<double>& state = context.state();
     std::vector<double> derivatives(state.size());
-    system.initialize(0.0, state.data());
+    system.initialize(context, 0.0, state.data());
     const long before = allocations.load();
     for (int k = 0; k < 1000; ++k) {
       const double t = 0.37 * k;
-      system.evaluate_derivatives(t, t, state.data(), derivatives.data());
-      system.evaluate_outputs(t, t, state.data());
-      (void)system.next_breakpoint_after(t);
+      system.evaluate_derivatives(context, t, t, state.data(), derivatives.data());
+      system.evaluate_outputs(context, t, t, state.data());
+      (void)system.next_breakpoint_after(context, t);
     }
     const long allocated = allocations.load() - before;
     INFO(config);

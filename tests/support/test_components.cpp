@@ -9,12 +9,16 @@ std::vector<OutputDeclaration> SignalSource::outputs() const {
   return {{"value", "1"}};
 }
 
-void SignalSource::compute_outputs(const Evaluation& evaluation) const {
-  set_output(evaluation, 0, signal_->value(evaluation.signal_time));
+std::vector<SignalDeclaration> SignalSource::signals() const {
+  return {{"value", "1", signal_.get()}};
 }
 
-double SignalSource::next_breakpoint_after(double t) const {
-  return signal_->next_breakpoint_after(t);
+void SignalSource::compute_outputs(const Evaluation& evaluation) const {
+  set_output(evaluation, 0, signal(evaluation, 0).value(evaluation.signal_time));
+}
+
+double SignalSource::next_breakpoint_after(const Evaluation& evaluation) const {
+  return signal(evaluation, 0).next_breakpoint_after(evaluation.time);
 }
 
 DecayTimeSensor::DecayTimeSensor(InductanceLaw law)

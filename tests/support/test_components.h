@@ -16,8 +16,9 @@ class SignalSource final : public Component {
  public:
   SignalSource(std::string group, std::unique_ptr<Signal> signal);
   std::vector<OutputDeclaration> outputs() const override;
+  std::vector<SignalDeclaration> signals() const override;
   void compute_outputs(const Evaluation& evaluation) const override;
-  double next_breakpoint_after(double t) const override;
+  double next_breakpoint_after(const Evaluation& evaluation) const override;
 
  private:
   std::unique_ptr<Signal> signal_;
