@@ -53,6 +53,14 @@ int validate(const Options& options) {
     std::cout << "  output /" << channel.group << "/" << channel.name << " [" << channel.unit
               << "]\n";
   }
+  for (const auto& parameter : scenario.system->parameters()) {
+    const auto& declared = parameter.declaration;
+    std::cout << "  parameter " << declared.path << " = " << declared.value
+              << (declared.unit == "1" ? "" : " " + declared.unit);
+    if (!parameter.derived_from.empty())
+      std::cout << " (derived: " << parameter.derived_from << ")";
+    std::cout << "\n";
+  }
   return kSuccess;
 }
 
