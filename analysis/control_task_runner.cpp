@@ -9,6 +9,7 @@
 
 #include "controllers/pid_controller.h"
 #include "controllers/self_sensing_estimator.h"
+#include "kinds/standard_kinds.h"
 #include "signals/control_task_signals.h"
 #include "sim/io/hdf5_writer.h"
 #include "sim/memory_record.h"

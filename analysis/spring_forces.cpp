@@ -6,6 +6,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "kinds/standard_kinds.h"
 #include "models/coil_spring_chain.h"
 #include "models/coil_spring_inductance.h"
 #include "sim/io/hdf5_writer.h"

@@ -10,8 +10,8 @@
 
 #include "analysis/spring_forces.h"
 #include "analysis/spring_modes.h"
+#include "kinds/standard_kinds.h"
 #include "models/coil_spring_chain.h"
-#include "sim/scenario.h"
 
 namespace tcpmsim {
 

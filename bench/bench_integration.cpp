@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "sim/scenario.h"
+#include "kinds/standard_kinds.h"
 
 namespace {
 class KeepEverything final : public tcpmsim::OutputSink {

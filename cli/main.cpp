@@ -9,9 +9,9 @@
 #include "analysis/control_tasks_command.h"
 #include "analysis/spring_forces_command.h"
 #include "cli/progress.h"
+#include "kinds/standard_kinds.h"
 #include "sim/config/config_error.h"
 #include "sim/run.h"
-#include "sim/scenario.h"
 #include "tcpmsim/version.h"
 
 namespace {

@@ -3,8 +3,8 @@
 #include <memory>
 
 #include "models/laws/pwm_supply.h"
-#include "signals/signal_config.h"
 #include "sim/parametric_component.h"
+#include "sim/signal_reading.h"
 
 namespace tcpmsim {
 

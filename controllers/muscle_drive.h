@@ -3,9 +3,9 @@
 #include <memory>
 
 #include "models/laws/pwm_supply.h"
-#include "signals/signal_config.h"
 #include "sim/component.h"
 #include "sim/random_stream.h"
+#include "sim/signal_reading.h"
 
 namespace tcpmsim {
 

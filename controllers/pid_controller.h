@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "signals/signal_config.h"
 #include "sim/config/config_node.h"
 #include "sim/parameters.h"
 #include "sim/sampled_component.h"
+#include "sim/signal_reading.h"
 
 namespace tcpmsim {
 

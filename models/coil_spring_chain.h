@@ -3,8 +3,8 @@
 #include <Eigen/Dense>
 #include <memory>
 
-#include "signals/signal_config.h"
 #include "sim/parametric_component.h"
+#include "sim/signal_reading.h"
 
 namespace tcpmsim {
 

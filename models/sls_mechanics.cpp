@@ -28,7 +28,10 @@ std::unique_ptr<SlsMechanics> SlsMechanics::from_config(const std::string& group
 }
 
 std::vector<OutputDeclaration> SlsMechanics::outputs() const {
-  return {{"force", "N"}, {"deflection", "m"}, {"elastic_force", "N"}};
+  return {{"force", "N"},
+          {"deflection", "m"},
+          {"elastic_force", "N"},
+          {"rest_deflection", "m", false, false}};
 }
 
 std::vector<InputDeclaration> SlsMechanics::inputs() const {
@@ -67,15 +70,9 @@ void SlsMechanics::initialize(const Evaluation& evaluation, std::span<double> ow
     own_state[0] = input(evaluation, kDeflection);
     return;
   }
-  const auto& p = run_parameters(evaluation);
-  if (!has_attachments()) {
-    own_state[0] =
-        sls::rest_deflection(p, input(evaluation, kForce), input(evaluation, kThermalForce));
-    return;
-  }
-  own_state[0] = (input(evaluation, kForce) - input(evaluation, kThermalForce) - p.force_offset -
-                  input_sum(evaluation, kAttachedForce)) /
-                 (p.k1 + input_sum(evaluation, kAttachedStiffness));
+  // Attached branches start relaxed as well, so they carry nothing here.
+  own_state[0] = sls::rest_deflection(run_parameters(evaluation), input(evaluation, kForce),
+                                      input(evaluation, kThermalForce));
 }
 
 void SlsMechanics::compute_outputs(const Evaluation& evaluation) const {
@@ -89,6 +86,10 @@ void SlsMechanics::compute_outputs(const Evaluation& evaluation) const {
   set_output(evaluation, kDeflectionOutput, x);
   set_output(evaluation, kElasticForce, elastic);
   set_output(evaluation, kForceOutput, force);
+  set_output(evaluation, kRestDeflection,
+             deflection_imposed() ? x
+                                  : sls::rest_deflection(p, input(evaluation, kForce),
+                                                         input(evaluation, kThermalForce)));
 }
 
 void SlsMechanics::compute_derivatives(const Evaluation& evaluation, double* derivatives) const {

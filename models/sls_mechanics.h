@@ -20,11 +20,14 @@ namespace tcpmsim {
 // its force as affine in the deflection at its present state, F_j = s_j x + b_j, through the
 // fan-in inputs "attached_stiffness" (s_j) and "attached_force" (b_j), so that (7.5) becomes
 //     F = F_l + F_T + phi_0 + S x + B,   S = sum s_j, B = sum b_j,
-// and stays solvable for x under an imposed force.
+// and stays solvable for x under an imposed force. Such a branch starts relaxed at the
+// deflection the muscle rests at, the port-only output "rest_deflection" (x itself when x is
+// imposed; (F - F_T - phi_0)/k1 under an imposed force, where every relaxed branch carries
+// nothing).
 class SlsMechanics final : public ParametricComponent<SlsParameters> {
  public:
   enum Input { kThermalForce, kDeflection, kForce, kAttachedStiffness, kAttachedForce };
-  enum Output { kForceOutput, kDeflectionOutput, kElasticForce };
+  enum Output { kForceOutput, kDeflectionOutput, kElasticForce, kRestDeflection };
 
   SlsMechanics(std::string group, SlsParameters defaults,
                ParameterBindings<SlsParameters> bindings = {});

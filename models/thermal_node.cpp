@@ -1,7 +1,5 @@
 #include "models/thermal_node.h"
 
-#include "signals/signal_config.h"
-
 namespace tcpmsim {
 
 namespace {

@@ -3,9 +3,9 @@
 #include <memory>
 #include <optional>
 
-#include "signals/signal_config.h"
 #include "sim/config/config_node.h"
 #include "sim/parametric_component.h"
+#include "sim/signal_reading.h"
 
 namespace tcpmsim {
 

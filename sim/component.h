@@ -24,11 +24,13 @@ struct StateDeclaration {
 // A named, unit-carrying value a component publishes for others (and for the recorder).
 // An *observed* output is expensive and feeds nothing continuous (a coil's inductance from
 // Maxwell's O(N^2) sum): it is computed only for the record and at breakpoints, never inside
-// the right-hand side, and may be read only by sampled inputs.
+// the right-hand side, and may be read only by sampled inputs. An output that is not
+// *recorded* is a port only (an attached branch's stiffness for the SLS to solve with).
 struct OutputDeclaration {
   std::string name;
   std::string unit;
   bool observed = false;
+  bool recorded = true;
 };
 
 // How many outputs an input reads.
@@ -135,7 +137,9 @@ class Component {
 
   // Writes the component's initial state. Called in evaluation order with the outputs of
   // upstream components already computed, so initial conditions may depend on inputs
-  // (a relaxed dashpot starts at the imposed deflection).
+  // (a relaxed dashpot starts at the imposed deflection); then once more, with every output of
+  // the first round, so that they may also depend on inputs read without feedthrough (an
+  // attached branch starts relaxed at the muscle's deflection).
   virtual void initialize(const Evaluation& evaluation, std::span<double> own_state) const;
 
   // Computes all non-observed outputs from the component's state, its inputs and time.

@@ -6,6 +6,7 @@ namespace tcpmsim {
 
 MemoryRecord::MemoryRecord(const System& system) {
   for (const auto& channel : system.channels()) {
+    if (!channel.recorded) continue;
     layout_.emplace_back(channel.group + "/" + channel.name, channel.signal_index);
     channels[channel.group + "/" + channel.name];
   }

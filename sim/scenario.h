@@ -3,23 +3,17 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sim/config/config_node.h"
 #include "sim/context.h"
 #include "sim/integrator.h"
+#include "sim/registry.h"
+#include "sim/scenario_builder.h"
 #include "sim/system.h"
 
 namespace tcpmsim {
-
-struct ScenarioSettings {
-  std::string name;
-  std::string description;
-  double duration = 0.0;  // [s]
-  std::uint64_t seed = 0;
-  double output_interval = 0.0;  // [s]
-  double output_start = 0.0;     // [s] first recorded time
-};
 
 // A scenario file turned into an assembled system, ready to integrate: each run takes a
 // context of its own (make_context).
@@ -27,17 +21,28 @@ struct Scenario {
   ScenarioSettings settings;
   SolverSettings solver;
   std::shared_ptr<const System> system;
+  // Parameters the command line set (--set left.mechanics.k2=3 mN/mm), in SI, applied to every
+  // context make_context makes.
+  std::vector<std::pair<std::string, double>> parameter_settings;
   std::string source;         // the file it came from
   std::string resolved_yaml;  // as read, with overrides and defaults
   // A context for one run, with the parameters as the scenario sets them.
   Context make_context() const;
 };
 
-// Builds a scenario from a parsed document; throws ConfigError on any bad input.
-Scenario build_scenario(const ConfigNode& root);
+// Builds a scenario from a parsed document, asking `kinds` for every section's kind; throws
+// ConfigError on any bad input.
+Scenario build_scenario(const ConfigNode& root, const KindRegistry& kinds);
 
-// Reads a scenario file, applying `overrides` ("key.path=value").
+// Reads a scenario from `text` (named `name` in messages) or a file, applying `overrides`
+// ("key.path=value", the command line's --set). An override whose path names a numeric
+// parameter of the model (left.mechanics.k2, or its full path muscles.left.mechanics.k2) is
+// set in the run context with its unit converted here; every other override (a kind, a choice,
+// a whole section) changes the document before the model is built.
+Scenario load_scenario_text(const std::string& text, const std::string& name,
+                            const std::vector<std::string>& overrides,
+                            std::shared_ptr<const UnitSystem> units, const KindRegistry& kinds);
 Scenario load_scenario(const std::string& file, const std::vector<std::string>& overrides,
-                       std::shared_ptr<const UnitSystem> units);
+                       std::shared_ptr<const UnitSystem> units, const KindRegistry& kinds);
 
 }  // namespace tcpmsim

@@ -44,6 +44,13 @@ bool SystemBuilder::has_port(std::string_view port) const {
   return ports_.count(std::string(port)) > 0;
 }
 
+bool SystemBuilder::is_connected(std::string_view port) const {
+  for (const auto& [connected, source] : port_connections_) {
+    if (connected == port) return true;
+  }
+  return false;
+}
+
 void SystemBuilder::derive(std::string path, ParameterRule rule, std::string explanation) {
   derivations_.push_back({std::move(path), std::move(rule), std::move(explanation)});
 }
@@ -87,8 +94,8 @@ void System::assign_slices() {
       if (!channel_by_name_.emplace(name, static_cast<int>(channels_.size())).second) {
         throw std::logic_error("two components publish the output '" + name + "'");
       }
-      channels_.push_back(
-          {component.group(), declared.name, declared.unit, signal_count_++, declared.observed});
+      channels_.push_back({component.group(), declared.name, declared.unit, signal_count_++,
+                           declared.observed, declared.recorded});
       signal_owner_.push_back(static_cast<int>(c));
     }
     inputs_.push_back(component.inputs());
@@ -334,11 +341,13 @@ void System::initialize(Context& context, double time, double* state) const {
   prepare(context);
   std::fill(state, state + state_size(), 0.0);
   const Evaluation now = evaluation(context, time, time, state);
-  for (const Component* component : evaluation_order_) {
-    const auto size =
-        static_cast<std::size_t>(state_counts_[static_cast<std::size_t>(component->index_)]);
-    component->initialize(now, std::span<double>(state + component->state_offset_, size));
-    component->compute_outputs(now);
+  for (int round = 0; round < 2; ++round) {
+    for (const Component* component : evaluation_order_) {
+      const auto size =
+          static_cast<std::size_t>(state_counts_[static_cast<std::size_t>(component->index_)]);
+      component->initialize(now, std::span<double>(state + component->state_offset_, size));
+      component->compute_outputs(now);
+    }
   }
   evaluate_outputs(context, time, time, state);
 }

@@ -29,6 +29,7 @@ struct ChannelInfo {
   std::string unit;
   int signal_index;
   bool observed;
+  bool recorded;
 };
 
 // A numeric parameter of the assembled model: a component's, or one of the signals a component
@@ -182,6 +183,8 @@ class SystemBuilder {
   // Connects an exported port to the output "group.name".
   void connect(std::string_view port, std::string_view source_output);
   bool has_port(std::string_view port) const;
+  // Whether anything has been connected to an exported port.
+  bool is_connected(std::string_view port) const;
 
   // Makes the parameter `path` follow `rule`, evaluated when a run starts; `explanation` says
   // from what ("1 / drive.pwm_frequency").

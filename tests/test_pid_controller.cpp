@@ -287,8 +287,9 @@ TEST_CASE("Closed through the estimator, the controller sees the force of its pr
 TEST_CASE("The controller reads its gains and limits with units") {
   auto load = [](const std::string& yaml) {
     const ConfigNode root = ConfigNode::load_text(yaml, "c.yaml", {}, shared_units());
+    const KindRegistry kinds = standard_kinds();
     auto controller =
-        PidController::from_config("controller", root.at("controller"), 0.05, {1, 100.0});
+        PidController::from_config("controller", root.at("controller"), 0.05, {1, 100.0, &kinds});
     root.reject_unknown_keys();
     return controller;
   };

@@ -10,7 +10,7 @@
 #include "signals/piecewise_constant_signal.h"
 #include "signals/random_steps.h"
 #include "signals/sequence_signal.h"
-#include "signals/signal_config.h"
+#include "sim/signal_reading.h"
 #include "tests/support/test_support.h"
 
 using namespace tcpmsim;
@@ -23,7 +23,8 @@ std::unique_ptr<Signal> signal_from(const std::string& yaml, std::string_view un
                                     std::uint64_t seed = 1) {
   const ConfigNode root =
       ConfigNode::load_text("signal: " + yaml, "signal.yaml", {}, shared_units());
-  auto signal = read_signal(root.at("signal"), unit, {seed, duration});
+  const KindRegistry kinds = standard_kinds();
+  auto signal = read_signal(root.at("signal"), unit, {seed, duration, &kinds});
   root.reject_unknown_keys();
   return signal;
 }

@@ -241,16 +241,20 @@ SourceLocation ConfigNode::location() const {
 }
 
 std::string ConfigNode::parameter_path() const {
-  // The longest renamed prefix of this path, found by trying each shorter prefix in turn.
+  return parameter_path_of(path_);
+}
+
+std::string ConfigNode::parameter_path_of(const std::string& path) const {
+  // The longest renamed prefix of the path, found by trying each shorter prefix in turn.
   const auto& prefixes = document_->parameter_prefixes;
   if (!prefixes.empty()) {
-    for (std::size_t end = path_.size(); end > 0; --end) {
-      if (end < path_.size() && path_[end] != '.' && path_[end] != '[') continue;
-      const auto found = prefixes.find(path_.substr(0, end));
-      if (found != prefixes.end()) return found->second + path_.substr(end);
+    for (std::size_t end = path.size(); end > 0; --end) {
+      if (end < path.size() && path[end] != '.' && path[end] != '[') continue;
+      const auto found = prefixes.find(path.substr(0, end));
+      if (found != prefixes.end()) return found->second + path.substr(end);
     }
   }
-  return path_;
+  return path;
 }
 
 std::string ConfigNode::parameter_path(std::string_view key) const {
@@ -326,6 +330,16 @@ std::vector<ConfigNode> ConfigNode::elements() const {
   return result;
 }
 
+std::vector<std::pair<std::string, ConfigNode>> ConfigNode::entries() const {
+  if (!node_.IsMap()) fail("expected a mapping, got a " + node_kind(node_));
+  std::vector<std::pair<std::string, ConfigNode>> result;
+  for (const auto& entry : node_) {
+    const std::string key = entry.first.as<std::string>();
+    result.emplace_back(key, at(key));
+  }
+  return result;
+}
+
 double ConfigNode::as_quantity(std::string_view si_unit, const ValueCheck& check) const {
   const bool dimensionless = si_unit == "1";
   const std::string wanted =
@@ -395,8 +409,11 @@ std::string ConfigNode::as_text() const {
 }
 
 std::string ConfigNode::as_choice(std::initializer_list<std::string_view> options) const {
+  return as_choice(std::vector<std::string>(options.begin(), options.end()));
+}
+
+std::string ConfigNode::as_choice(const std::vector<std::string>& candidates) const {
   const std::string value = as_text();
-  std::vector<std::string> candidates(options.begin(), options.end());
   if (std::find(candidates.begin(), candidates.end(), value) != candidates.end()) return value;
   std::string listed;
   for (const auto& option : candidates) listed += (listed.empty() ? "" : ", ") + option;
@@ -467,8 +484,18 @@ std::string ConfigNode::choice(std::string_view key,
   return at(key).as_choice(options);
 }
 
+std::string ConfigNode::choice(std::string_view key,
+                               const std::vector<std::string>& options) const {
+  return at(key).as_choice(options);
+}
+
 std::string ConfigNode::choice_or(std::string_view key,
                                   std::initializer_list<std::string_view> options,
+                                  std::string_view fallback) const {
+  return choice_or(key, std::vector<std::string>(options.begin(), options.end()), fallback);
+}
+
+std::string ConfigNode::choice_or(std::string_view key, const std::vector<std::string>& options,
                                   std::string_view fallback) const {
   if (auto value = find(key)) return value->as_choice(options);
   record_default(key, std::string(fallback));

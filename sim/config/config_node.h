@@ -36,6 +36,8 @@ class ConfigNode {
   // "left.mechanics.k2"); see name_parameters.
   std::string parameter_path() const;
   std::string parameter_path(std::string_view key) const;
+  // The parameter path of any scenario path of this document.
+  std::string parameter_path_of(const std::string& scenario_path) const;
   // Parameters under this node are addressed from `prefix` instead of this node's path.
   void name_parameters(const std::string& prefix) const;
   SourceLocation location() const;
@@ -56,6 +58,8 @@ class ConfigNode {
   ConfigNode at(std::string_view key) const;
   std::optional<ConfigNode> find(std::string_view key) const;
   std::vector<ConfigNode> elements() const;  // requires a sequence
+  // Every key of a mapping with its node, in the file's order (each counts as asked for).
+  std::vector<std::pair<std::string, ConfigNode>> entries() const;
 
   // This node as a typed scalar.
   double as_quantity(std::string_view si_unit, const ValueCheck& check = {}) const;
@@ -64,6 +68,7 @@ class ConfigNode {
   bool as_bool() const;
   std::string as_text() const;
   std::string as_choice(std::initializer_list<std::string_view> options) const;
+  std::string as_choice(const std::vector<std::string>& options) const;
 
   // Keyed shorthands. The *_or forms record the default in the resolved document.
   double quantity(std::string_view key, std::string_view si_unit,
@@ -77,7 +82,10 @@ class ConfigNode {
   bool boolean_or(std::string_view key, bool fallback) const;
   std::string text(std::string_view key) const;
   std::string choice(std::string_view key, std::initializer_list<std::string_view> options) const;
+  std::string choice(std::string_view key, const std::vector<std::string>& options) const;
   std::string choice_or(std::string_view key, std::initializer_list<std::string_view> options,
+                        std::string_view fallback) const;
+  std::string choice_or(std::string_view key, const std::vector<std::string>& options,
                         std::string_view fallback) const;
   // A two-element sequence [lower, upper] of quantities with lower < upper.
   std::pair<double, double> interval(std::string_view key, std::string_view si_unit,

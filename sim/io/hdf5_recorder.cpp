@@ -109,6 +109,14 @@ Hdf5Recorder::Hdf5Recorder(std::string path, const System& system, const Context
   file_->datasets.push_back(create_series(root, "time", "s", chunk_samples_));
   buffers_.emplace_back();
   for (const auto& channel : system.channels()) {
+    if (!channel.recorded) continue;
+    // A part's group sits inside its instance's ("/muscle/maxwell_branch").
+    for (std::size_t slash = channel.group.find('/'); slash != std::string::npos;
+         slash = channel.group.find('/', slash + 1)) {
+      const std::string parent = channel.group.substr(0, slash);
+      if (!file_->groups.count(parent))
+        file_->groups[parent] = file_->file.createGroup("/" + parent);
+    }
     auto [entry, created] = file_->groups.try_emplace(channel.group);
     if (created) entry->second = file_->file.createGroup("/" + channel.group);
     file_->datasets.push_back(

@@ -28,7 +28,7 @@ std::shared_ptr<const UnitSystem> shared_units() {
 }
 
 Scenario scenario_from_text(const std::string& yaml, const std::vector<std::string>& overrides) {
-  return build_scenario(ConfigNode::load_text(yaml, "test.yaml", overrides, shared_units()));
+  return load_scenario_text(yaml, "test.yaml", overrides, shared_units());
 }
 
 double allowed(double rtol, double scale) {

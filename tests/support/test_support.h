@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "controllers/self_sensing_estimator.h"
+#include "kinds/standard_kinds.h"
 #include "sim/integrator.h"
 #include "sim/memory_record.h"
-#include "sim/scenario.h"
 
 namespace tcpmsim::testing {
 

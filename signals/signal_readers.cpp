@@ -1,4 +1,4 @@
-#include "signals/signal_config.h"
+#include "signals/signal_readers.h"
 
 #include <cmath>
 #include <numbers>
@@ -94,7 +94,7 @@ std::string per_second(std::string_view unit) {
   return rate;
 }
 
-std::unique_ptr<Signal> constant(const ConfigNode& value_node, std::string_view unit) {
+std::unique_ptr<Signal> constant_at(const ConfigNode& value_node, std::string_view unit) {
   Declared declared;
   const double value = declared.add(value_node, value_node.as_quantity(unit), unit);
   return with_recipe(std::make_unique<ConstantSignal>(value), std::move(declared),
@@ -449,27 +449,62 @@ std::unique_ptr<Signal> read_step_sequence(const ConfigNode& node, std::string_v
 
 }  // namespace
 
-std::unique_ptr<Signal> read_signal(const ConfigNode& node, std::string_view si_unit,
-                                    const SignalContext& context) {
-  if (node.is_scalar()) return constant(node, si_unit);
-  if (!node.is_map()) node.fail("expected a quantity or a signal mapping with a 'type'");
-  const std::string type =
-      node.choice("type", {"constant", "steps", "ramp", "piecewise_linear", "staircase", "sine",
-                           "multisine", "random_steps", "log_sweep", "sequence", "periodic",
-                           "stepped_sine_sweep", "step_sequence"});
-  if (type == "constant") return constant(node.at("value"), si_unit);
-  if (type == "steps") return read_steps(node, si_unit);
-  if (type == "ramp") return read_ramp(node, si_unit);
-  if (type == "piecewise_linear") return read_piecewise_linear(node, si_unit);
-  if (type == "staircase") return read_staircase(node, si_unit);
-  if (type == "sine") return read_sine(node, si_unit, context);
-  if (type == "multisine") return read_multisine(node, si_unit, context);
-  if (type == "random_steps") return read_random_steps(node, si_unit, context);
-  if (type == "log_sweep") return read_log_sweep(node, si_unit, context);
-  if (type == "periodic") return read_periodic(node, si_unit, context);
-  if (type == "stepped_sine_sweep") return read_stepped_sine_sweep(node, si_unit);
-  if (type == "step_sequence") return read_step_sequence(node, si_unit);
+namespace signal_readers {
+
+std::unique_ptr<Signal> constant(const ConfigNode& node, std::string_view si_unit,
+                                 const SignalContext&) {
+  if (node.is_scalar()) return constant_at(node, si_unit);
+  return constant_at(node.at("value"), si_unit);
+}
+std::unique_ptr<Signal> steps(const ConfigNode& node, std::string_view si_unit,
+                              const SignalContext&) {
+  return read_steps(node, si_unit);
+}
+std::unique_ptr<Signal> ramp(const ConfigNode& node, std::string_view si_unit,
+                             const SignalContext&) {
+  return read_ramp(node, si_unit);
+}
+std::unique_ptr<Signal> piecewise_linear(const ConfigNode& node, std::string_view si_unit,
+                                         const SignalContext&) {
+  return read_piecewise_linear(node, si_unit);
+}
+std::unique_ptr<Signal> staircase(const ConfigNode& node, std::string_view si_unit,
+                                  const SignalContext&) {
+  return read_staircase(node, si_unit);
+}
+std::unique_ptr<Signal> sine(const ConfigNode& node, std::string_view si_unit,
+                             const SignalContext& context) {
+  return read_sine(node, si_unit, context);
+}
+std::unique_ptr<Signal> multisine(const ConfigNode& node, std::string_view si_unit,
+                                  const SignalContext& context) {
+  return read_multisine(node, si_unit, context);
+}
+std::unique_ptr<Signal> random_steps(const ConfigNode& node, std::string_view si_unit,
+                                     const SignalContext& context) {
+  return read_random_steps(node, si_unit, context);
+}
+std::unique_ptr<Signal> log_sweep(const ConfigNode& node, std::string_view si_unit,
+                                  const SignalContext& context) {
+  return read_log_sweep(node, si_unit, context);
+}
+std::unique_ptr<Signal> sequence(const ConfigNode& node, std::string_view si_unit,
+                                 const SignalContext& context) {
   return read_sequence(node, si_unit, context);
 }
+std::unique_ptr<Signal> periodic(const ConfigNode& node, std::string_view si_unit,
+                                 const SignalContext& context) {
+  return read_periodic(node, si_unit, context);
+}
+std::unique_ptr<Signal> stepped_sine_sweep(const ConfigNode& node, std::string_view si_unit,
+                                           const SignalContext&) {
+  return read_stepped_sine_sweep(node, si_unit);
+}
+std::unique_ptr<Signal> step_sequence(const ConfigNode& node, std::string_view si_unit,
+                                      const SignalContext&) {
+  return read_step_sequence(node, si_unit);
+}
+
+}  // namespace signal_readers
 
 }  // namespace tcpmsim

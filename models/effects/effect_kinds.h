@@ -1,0 +1,12 @@
+#pragma once
+
+#include "sim/registry.h"
+
+namespace tcpmsim {
+
+// Registers the effects a muscle's `effects` list may attach: maxwell_branch (a further
+// viscoelastic branch in its force balance) and free_convection (a heat-loss law in its heat
+// balance).
+void register_effect_kinds(KindRegistry& kinds);
+
+}  // namespace tcpmsim

@@ -1,0 +1,42 @@
+#pragma once
+
+#include <memory>
+
+#include "sim/config/config_node.h"
+#include "sim/parametric_component.h"
+
+namespace tcpmsim {
+
+// Laminar free convection from the muscle, attached to its heat balance: the heat transfer
+// coefficient of a body in still air grows with the temperature difference as dT^(1/4)
+// (Nu ~ Ra^(1/4), the laminar range of Churchill and Chu's correlations), so the loss is
+//     Q = G dT_ref (dT / dT_ref)^(5/4),   dT = T - T_amb,
+// stated by its conductance G [W/K] at a reference difference dT_ref (Q = G dT there). Below
+// ambient the same law cools in reverse, Q = -G dT_ref (|dT| / dT_ref)^(5/4). This is the
+// "nonlinear cooling" the thesis names as unmodelled; beside the node's linear conductance it
+// makes the steady temperature rise less than linearly with power.
+struct FreeConvectionParameters {
+  double conductance = 0.0;           // G [W/K] at the reference difference
+  double reference_difference = 0.0;  // dT_ref [K]
+};
+
+class FreeConvection final : public ParametricComponent<FreeConvectionParameters> {
+ public:
+  enum Input { kTemperature, kAmbient };
+  enum Output { kHeatLoss };
+  FreeConvection(std::string group, FreeConvectionParameters defaults,
+                 ParameterBindings<FreeConvectionParameters> bindings = {});
+  // Keys conductance, reference_difference.
+  static std::unique_ptr<FreeConvection> from_config(const std::string& group,
+                                                     const ConfigNode& node);
+  // Q for a temperature difference dT [W].
+  static double heat_loss(const FreeConvectionParameters& p, double difference);
+
+  std::vector<OutputDeclaration> outputs() const override { return {{"heat_loss", "W"}}; }
+  std::vector<InputDeclaration> inputs() const override {
+    return {{"temperature", true}, {"ambient_temperature", true}};
+  }
+  void compute_outputs(const Evaluation& evaluation) const override;
+};
+
+}  // namespace tcpmsim

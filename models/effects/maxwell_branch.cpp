@@ -1,0 +1,48 @@
+#include "models/effects/maxwell_branch.h"
+
+namespace tcpmsim {
+
+MaxwellBranch::MaxwellBranch(std::string group, MaxwellBranchParameters defaults,
+                             ParameterBindings<MaxwellBranchParameters> bindings)
+    : ParametricComponent(std::move(group), "maxwell_branch", defaults, std::move(bindings)) {}
+
+std::unique_ptr<MaxwellBranch> MaxwellBranch::from_config(const std::string& group,
+                                                          const ConfigNode& node) {
+  using P = MaxwellBranchParameters;
+  node.declare({"type", "name", "stiffness", "damping"});
+  P p;
+  ParameterBindings<P> bind;
+  bind.quantity(node, "stiffness", "N/m", ValueCheck::positive(), p, bind.member(&P::stiffness));
+  bind.quantity(node, "damping", "N*s/m", ValueCheck::positive(), p, bind.member(&P::damping));
+  return std::make_unique<MaxwellBranch>(group, p, std::move(bind));
+}
+
+std::vector<OutputDeclaration> MaxwellBranch::outputs() const {
+  // The affine pair is a port for the SLS only; the force is what the record shows.
+  return {{"stiffness", "N/m", false, false},
+          {"offset_force", "N", false, false},
+          {"force", "N", true}};
+}
+
+void MaxwellBranch::initialize(const Evaluation& evaluation, std::span<double> own_state) const {
+  own_state[0] = input(evaluation, kRestDeflection);  // relaxed
+}
+
+void MaxwellBranch::compute_outputs(const Evaluation& evaluation) const {
+  const auto& p = run_parameters(evaluation);
+  set_output(evaluation, kStiffness, p.stiffness);
+  set_output(evaluation, kOffsetForce, -p.stiffness * state(evaluation, 0));
+}
+
+void MaxwellBranch::compute_observations(const Evaluation& evaluation) const {
+  const auto& p = run_parameters(evaluation);
+  set_output(evaluation, kForce, p.stiffness * (input(evaluation, kDeflection) - state(evaluation, 0)));
+}
+
+void MaxwellBranch::compute_derivatives(const Evaluation& evaluation, double* derivatives) const {
+  const auto& p = run_parameters(evaluation);
+  set_derivative(derivatives, 0,
+                 p.stiffness / p.damping * (input(evaluation, kDeflection) - state(evaluation, 0)));
+}
+
+}  // namespace tcpmsim

@@ -1,0 +1,49 @@
+#pragma once
+
+#include <memory>
+
+#include "sim/config/config_node.h"
+#include "sim/parametric_component.h"
+
+namespace tcpmsim {
+
+// A further viscoelastic branch attached to a muscle: a spring k_b in series with a dashpot
+// c_b (a Maxwell element) in parallel with the SLS, which makes the muscle a generalized
+// Maxwell (Wiechert) solid with one more relaxation time, c_b / k_b. With the dashpot
+// extension y as state,
+//     c_b dy/dt = k_b (x - y),    F_b = k_b (x - y),
+// so a deflection step dx relaxes as k_b dx exp(-t k_b / c_b) beside the SLS's own
+// k2 dx exp(-t k2 / c). It publishes its force as affine in the deflection at its present
+// state, F_b = s x + b with s = k_b and b = -k_b y (the muscle's "attached_stiffness" and
+// "attached_force" ports), so that the SLS can solve (7.5) for x under an imposed force; and
+// F_b itself (observed) for the record. It starts relaxed, y = x at the muscle's rest.
+struct MaxwellBranchParameters {
+  double stiffness = 0.0;  // k_b [N/m]
+  double damping = 0.0;    // c_b [N s/m]
+};
+
+class MaxwellBranch final : public ParametricComponent<MaxwellBranchParameters> {
+ public:
+  enum Input { kDeflection, kRestDeflection };
+  enum Output { kStiffness, kOffsetForce, kForce };
+  MaxwellBranch(std::string group, MaxwellBranchParameters defaults,
+                ParameterBindings<MaxwellBranchParameters> bindings = {});
+  // Keys stiffness, damping.
+  static std::unique_ptr<MaxwellBranch> from_config(const std::string& group,
+                                                    const ConfigNode& node);
+
+  std::vector<StateDeclaration> states() const override {
+    return {{"dashpot_extension", "m", 1e-12}};
+  }
+  std::vector<OutputDeclaration> outputs() const override;
+  // Read for the derivative and the record, and once to start from; neither with feedthrough.
+  std::vector<InputDeclaration> inputs() const override {
+    return {{"deflection", false}, {"rest_deflection", false}};
+  }
+  void initialize(const Evaluation& evaluation, std::span<double> own_state) const override;
+  void compute_outputs(const Evaluation& evaluation) const override;
+  void compute_observations(const Evaluation& evaluation) const override;
+  void compute_derivatives(const Evaluation& evaluation, double* derivatives) const override;
+};
+
+}  // namespace tcpmsim

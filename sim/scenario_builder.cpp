@@ -1,0 +1,129 @@
+#include "sim/scenario_builder.h"
+
+#include <set>
+
+namespace tcpmsim {
+
+namespace {
+// Names that would collide with the record's own datasets and groups or the scenario's
+// sections.
+const std::set<std::string> kReservedNames{"time", "inputs", "scenario", "output", "solver"};
+
+void check_name(const ConfigNode& node, const std::string& name) {
+  if (name.empty() || name.find_first_of("./[] \t") != std::string::npos) {
+    node.fail(
+        "expected an instance name without dots, slashes, brackets or spaces (it names "
+        "the record's group), got '" +
+        name + "'");
+  }
+  if (name.find('/') != std::string::npos)
+    node.fail("expected an instance name without slashes, got '" + name + "'");
+  if (kReservedNames.count(name)) node.fail("'" + name + "' is reserved; choose another name");
+}
+}  // namespace
+
+ScenarioBuilder::ScenarioBuilder(const KindRegistry& kinds, const ConfigNode& root,
+                                 ScenarioSettings settings)
+    : kinds_(kinds), settings_(std::move(settings)) {
+  declare_instances(root);
+}
+
+void ScenarioBuilder::declare_instances(const ConfigNode& root) {
+  std::set<std::string> names;
+  auto declare = [&](const Category& category, const ConfigNode& node, const std::string& name,
+                     const ConfigNode& located) {
+    check_name(located, name);
+    if (!names.insert(name).second)
+      located.fail("two instances are named '" + name + "'; names must be unique");
+    instances_.push_back({category.name, name, node, &kinds_.select(category.name, node)});
+  };
+  for (const Category& category : kinds_.categories()) {
+    if (!category.top_level()) continue;
+    if (const auto single = root.find(category.name))
+      declare(category, *single, category.name, *single);
+    if (const auto plural = root.find(category.plural)) {
+      if (!plural->is_map())
+        plural->fail("expected a mapping of " + category.name + " names to their sections");
+      for (const auto& [name, node] : plural->entries()) {
+        node.name_parameters(name);
+        declare(category, node, name, node);
+      }
+    }
+  }
+}
+
+std::unique_ptr<Signal> ScenarioBuilder::signal(const ConfigNode& node,
+                                                std::string_view si_unit) const {
+  return read_signal(node, si_unit, signals());
+}
+
+std::vector<const InstanceDeclaration*> ScenarioBuilder::instances(
+    std::string_view category) const {
+  std::vector<const InstanceDeclaration*> found;
+  for (const auto& instance : instances_) {
+    if (instance.category == category) found.push_back(&instance);
+  }
+  return found;
+}
+
+const InstanceDeclaration* ScenarioBuilder::instance(std::string_view name) const {
+  for (const auto& instance : instances_) {
+    if (instance.name == name) return &instance;
+  }
+  return nullptr;
+}
+
+const InstanceDeclaration& ScenarioBuilder::named(const ConfigNode& name_node,
+                                                  std::string_view category) const {
+  const std::string name = name_node.as_text();
+  const InstanceDeclaration* found = instance(name);
+  if (!found || found->category != category) {
+    std::vector<std::string> candidates;
+    for (const auto* other : instances(category)) candidates.push_back(other->name);
+    std::string listed;
+    for (const auto& candidate : candidates) listed += (listed.empty() ? "" : ", ") + candidate;
+    const std::string suggestion = closest_match(name, candidates);
+    name_node.fail("no " + std::string(category) + " named '" + name + "'" +
+                   (suggestion.empty() ? "" : " (did you mean '" + suggestion + "'?)") +
+                   (listed.empty() ? "" : "; the scenario's: " + listed));
+  }
+  return *found;
+}
+
+const InstanceDeclaration& ScenarioBuilder::linked(const ConfigNode& node, std::string_view key,
+                                                   std::string_view category) const {
+  if (const auto name = node.find(key)) return named(*name, category);
+  const auto candidates = instances(category);
+  if (candidates.size() == 1) return *candidates.front();
+  if (candidates.empty())
+    node.fail("needs a " + std::string(category) + ", and the scenario has none");
+  node.fail("the scenario has several " + kinds_.category(category).plural + "; say which with '" +
+            std::string(key) + ": <name>'");
+}
+
+std::vector<const InstanceDeclaration*> ScenarioBuilder::linked_all(
+    const ConfigNode& node, std::string_view key, std::string_view plural_key,
+    std::string_view category) const {
+  if (const auto list = node.find(plural_key)) {
+    std::vector<const InstanceDeclaration*> found;
+    std::set<std::string> seen;
+    for (const auto& element : list->elements()) {
+      const InstanceDeclaration& instance = named(element, category);
+      if (!seen.insert(instance.name).second)
+        element.fail("'" + instance.name + "' is listed twice");
+      found.push_back(&instance);
+    }
+    if (found.empty()) list->fail("expected at least one " + std::string(category));
+    if (node.has(key))
+      node.at(key).fail("give either '" + std::string(key) + "' or '" + std::string(plural_key) +
+                        "', not both");
+    return found;
+  }
+  return {&linked(node, key, category)};
+}
+
+void ScenarioBuilder::run_checks() const {
+  for (const auto& check : checks_) check();
+}
+
+}  // namespace tcpmsim

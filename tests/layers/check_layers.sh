@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# The layers, checked on every include: the engine (sim/) names no model; signals/ and models/
+# build on the engine only (models/ never on controllers/); controllers/ on models/ and the
+# engine; only kinds/ (the standard registry), analysis/, cli/, tests/ and bench/ see it all.
+# Usage: check_layers.sh SOURCE_DIR
+set -uo pipefail
+cd "$1"
+failures=0
+check() {  # check LAYER ALLOWED-PREFIX-REGEX
+  local layer=$1 allowed=$2
+  local bad
+  bad=$(grep -rn --include='*.h' --include='*.cpp' '#include "' "$layer" | grep -vE "#include \"($allowed)/" || true)
+  if [[ -n $bad ]]; then
+    echo "FAIL: $layer includes outside its layer ($allowed):"
+    echo "$bad"
+    failures=$((failures + 1))
+  else
+    echo "ok: $layer includes only $allowed"
+  fi
+}
+check sim 'sim|tcpmsim'
+check signals 'sim|signals'
+check models 'sim|models'
+check controllers 'sim|models|controllers'
+check kinds 'sim|signals|models|controllers|kinds'
+exit $((failures > 0))
