@@ -1,6 +1,7 @@
 // tcpmsim command line: run and validate scenarios.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -45,11 +46,14 @@ int validate(const Options& options) {
   tcpmsim::Scenario scenario = load(options);
   std::cout << options.config << ": valid scenario '" << scenario.settings.name << "', "
             << scenario.settings.duration << " s, " << scenario.system->state_size() << " states, "
-            << scenario.system->channels().size() << " output channels\n";
+            << std::count_if(scenario.system->channels().begin(), scenario.system->channels().end(),
+                             [](const auto& channel) { return channel.recorded; })
+            << " output channels\n";
   for (const auto& state : scenario.system->states()) {
     std::cout << "  state  " << state.name << " [" << state.unit << "]\n";
   }
   for (const auto& channel : scenario.system->channels()) {
+    if (!channel.recorded) continue;  // a port between components, not in the record
     std::cout << "  output /" << channel.group << "/" << channel.name << " [" << channel.unit
               << "]\n";
   }

@@ -76,15 +76,21 @@ void check_record(const std::map<std::string, RecordDigest>& reference, const st
 }  // namespace
 
 TEST_CASE("Every shipped scenario writes the record pinned before the composition refactor") {
+  // The scenarios that existed then: each pinned section names one, "ch7_control__force_steps"
+  // for configs/ch7_control/force_steps.yaml. Scenarios added since are not pinned.
   const auto reference = reference_digests();
   int count = 0;
-  for (const auto& entry : std::filesystem::recursive_directory_iterator(source_path("configs"))) {
-    if (entry.path().extension() != ".yaml") continue;
-    if (entry.path().parent_path().filename() == "springs") continue;
-    const auto relative = std::filesystem::relative(entry.path(), source_path("configs"));
-    std::string name = relative.parent_path().string();
-    name = (name.empty() ? "" : name + "__") + relative.stem().string();
-    Scenario scenario = load_scenario(entry.path().string(), {}, shared_units());
+  for (const auto& [name, digest] : reference) {
+    if (name == "coil_fit" || name == "spring_forces" || name == "control_tasks") continue;
+    const auto split = name.find("__");
+    std::filesystem::path file = source_path("configs");
+    if (split == std::string::npos) {
+      file /= name + ".yaml";
+    } else {
+      file /= name.substr(0, split);
+      file /= name.substr(split + 2) + ".yaml";
+    }
+    Scenario scenario = load_scenario(file.string(), {}, shared_units());
     const std::string output = temporary(name);
     REQUIRE(run_scenario(scenario, output).succeeded);
     check_record(reference, name, output);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
 
 namespace tcpmsim::testing {
@@ -53,7 +54,7 @@ std::string replaced(std::string text, const std::string& from, const std::strin
   return text.replace(at, from.size(), to);
 }
 
-Trace simulate(Scenario& scenario) {
+Trace simulate(const Scenario& scenario) {
   MemorySink sink(*scenario.system);
   Trace trace;
   trace.statistics = integrate(scenario, sink);
@@ -115,6 +116,11 @@ double max_abs_difference(const std::vector<double>& a, const std::vector<double
   double worst = 0.0;
   for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(a[i] - b[i]));
   return worst;
+}
+
+bool bitwise_equal(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
 }
 
 std::string source_path(const std::string& relative) {

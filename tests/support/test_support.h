@@ -25,7 +25,7 @@ std::shared_ptr<const UnitSystem> shared_units();
 
 Scenario scenario_from_text(const std::string& yaml,
                             const std::vector<std::string>& overrides = {});
-Trace simulate(Scenario& scenario);
+Trace simulate(const Scenario& scenario);
 Trace simulate(const std::string& yaml, const std::vector<std::string>& overrides = {});
 
 // A small physical-form muscle: C = 0.5 J/K, hA = 0.05 W/K, phi_T = 2 mN/K, SLS with
@@ -49,6 +49,8 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 std::string number(double value);
 
 double max_abs_difference(const std::vector<double>& a, const std::vector<double>& b);
+// The same doubles bit for bit (NaN equals NaN).
+bool bitwise_equal(const std::vector<double>& a, const std::vector<double>& b);
 std::string source_path(const std::string& relative);
 
 }  // namespace tcpmsim::testing
