@@ -12,6 +12,7 @@
 #include "cli/progress.h"
 #include "kinds/standard_kinds.h"
 #include "sim/config/config_error.h"
+#include "sim/kind_listing.h"
 #include "sim/run.h"
 #include "tcpmsim/version.h"
 
@@ -32,6 +33,7 @@ struct Options {
   std::string output;
   std::vector<std::string> overrides;
   bool quiet = false;
+  bool markdown = false;
   tcpmsim::analysis::CoilFitOptions coil_fit;
   tcpmsim::SpringForcesOptions spring_forces;
   tcpmsim::ControlTasksOptions control_tasks;
@@ -94,6 +96,13 @@ int run(const Options& options) {
               << " convergence failures, " << stats.segments << " segments; "
               << outcome.wall_seconds << " s wall\n";
   }
+  return kSuccess;
+}
+
+// Every kind the registry holds, with the keys its examples read (sim/kind_listing.h).
+int list_kinds(const Options& options) {
+  std::cout << tcpmsim::describe_kinds(tcpmsim::standard_kinds(),
+                                       std::make_shared<tcpmsim::UnitSystem>(), options.markdown);
   return kSuccess;
 }
 
@@ -189,6 +198,11 @@ int main(int argc, char** argv) {
       app.add_subcommand("validate", "Check a scenario file and list its states and outputs");
   add_common(*validate_command, options);
 
+  bool markdown = false;
+  CLI::App* kinds_command = app.add_subcommand(
+      "kinds", "List every kind of component and signal a scenario may name, with its keys");
+  kinds_command->add_flag("--markdown", markdown, "Markdown tables (docs/kinds.md)");
+
   CLI::App* coil_fit_command =
       add_analysis(app, "coil-fit",
                    "Thesis Tables 2.2/2.3 and the ch. 3 comparison from measured coil-spring data",
@@ -236,6 +250,10 @@ int main(int argc, char** argv) {
     return code == 0 ? kSuccess : kUsageError;
   }
   if (run_command->parsed()) return guarded(run, options);
+  if (kinds_command->parsed()) {
+    options.markdown = markdown;
+    return guarded(list_kinds, options);
+  }
   if (coil_fit_command->parsed()) return guarded(coil_fit, options);
   if (spring_forces_command->parsed()) return guarded(spring_forces, options);
   if (control_tasks_command->parsed()) return guarded(control_tasks, options);

@@ -25,6 +25,7 @@ std::unique_ptr<HangingMass> HangingMass::from_config(
   } else {
     bind.as_quantity(initial, "m", {}, p, bind.member(&P::initial_deflection));
   }
+  node.describe_key("initial_deflection", "quantity in m, or equilibrium");
   bind.quantity_or(node, "initial_velocity", "m/s", 0.0, {}, p, bind.member(&P::initial_velocity));
   return std::make_unique<HangingMass>(group, p, std::move(bind));
 }

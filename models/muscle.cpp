@@ -54,6 +54,12 @@ void build_effects(const ConfigNode& muscle, const std::string& name, const Musc
                    ScenarioBuilder& build) {
   const auto effects = muscle.find("effects");
   if (!effects) return;
+  effects->mark_part("list of effects: " + [&] {
+    std::string listed;
+    for (const auto& kind : build.kinds().kind_names(kEffectCategory))
+      listed += (listed.empty() ? "" : ", ") + kind;
+    return listed;
+  }());
   std::set<std::string> names;
   for (const auto& section : effects->elements()) {
     const Kind& kind = build.kinds().select(kEffectCategory, section);
@@ -69,6 +75,14 @@ void build_effects(const ConfigNode& muscle, const std::string& name, const Musc
   }
 }
 
+// The example scenario with a constant resistance.
+std::string replaced_resistance(std::string scenario) {
+  const std::string from = "  resistance: {form: linear";
+  const auto start = scenario.find(from);
+  const auto end = scenario.find('\n', start);
+  return scenario.replace(start, end - start, "  resistance: 10.18 ohm");
+}
+
 void build_muscle(const ConfigNode& muscle, const std::string& name, ScenarioBuilder& build) {
   muscle.declare({"thermal", "thermal_force", "mechanics", "resistance", "inductance", "effects"});
   SystemBuilder& system = build.system();
@@ -77,7 +91,8 @@ void build_muscle(const ConfigNode& muscle, const std::string& name, ScenarioBui
 
   auto& mechanics = system.add(SlsMechanics::from_config(name, muscle.at("mechanics")));
   system.connect(mechanics, "thermal_force", name + ".thermal_force");
-  for (const char* port : {"deflection", "force", "attached_stiffness", "attached_force"})
+  for (const char* port : {"deflection", "force", "attached_stiffness", "attached_force",
+                           "attached_rest_stiffness", "attached_rest_force"})
     system.export_input(name + "." + port, mechanics, port);
 
   const ConfigNode resistance = muscle.at("resistance");
@@ -117,12 +132,6 @@ void register_muscle_kinds(KindRegistry& kinds) {
                       "a physical effect attached to a muscle (muscle.effects: [...]): a further "
                       "force branch or heat-loss law the base components do not know",
                       "", 0});
-  kinds.add({kMuscleCategory,
-             "tcpm",
-             "thermal force (7.1) or a thermal node, SLS (7.5)-(7.6), coil (6.3)-(6.5); keys "
-             "thermal_force, mechanics, resistance, inductance, thermal (physical form), effects",
-             {{example_muscle_scenario("", ""), "muscle"}},
-             InstanceBuilder(build_muscle)});
   const std::string physical = R"(scenario: {name: example, duration: 10 s}
 output: {rate: 10 Hz}
 muscle:
@@ -141,6 +150,17 @@ muscle:
 drive: {mode: power, power: 1 W}
 load: {type: deflection, deflection: 20 mm}
 )";
+  const std::string constant_resistance = replaced_resistance(example_muscle_scenario(
+      "  effects: [{type: maxwell_branch, stiffness: 1 N/m, damping: 10 N*s/m}]\n", ""));
+  kinds.add({kMuscleCategory,
+             "tcpm",
+             "thermal force (7.1) or a thermal node, SLS (7.5)-(7.6), coil (6.3)-(6.5): "
+             "resistance a constant, linear (6.5) or thermal (6.4); inductance (6.3) in henries "
+             "or (7.3) as L*",
+             {{example_muscle_scenario("", ""), "muscle"},
+              {physical, "muscle"},
+              {constant_resistance, "muscle"}},
+             InstanceBuilder(build_muscle)});
   kinds.add({kThermalForceCategory,
              "physical",
              "F_T = phi_T (T - T_ref) with a thermal node C dT/dt = eta P - hA (T - T_amb) - "

@@ -39,15 +39,19 @@ std::vector<InputDeclaration> SlsMechanics::inputs() const {
           {"deflection", true, false, InputArity::optional},
           {"force", true, false, InputArity::optional},
           {"attached_stiffness", true, false, InputArity::many},
-          {"attached_force", true, false, InputArity::many}};
+          {"attached_force", true, false, InputArity::many},
+          {"attached_rest_stiffness", true, false, InputArity::many},
+          {"attached_rest_force", true, false, InputArity::many}};
 }
 
 std::string SlsMechanics::check_connections() const {
   if (source_count(kDeflection) + source_count(kForce) != 1)
     return "needs either its deflection or its force imposed (connected), not " +
            std::string(source_count(kDeflection) > 0 ? "both" : "neither");
-  if (source_count(kAttachedStiffness) != source_count(kAttachedForce))
-    return "has attached force terms with a stiffness but no force, or the reverse";
+  const int terms = source_count(kAttachedStiffness);
+  if (source_count(kAttachedForce) != terms || source_count(kAttachedRestStiffness) != terms ||
+      source_count(kAttachedRestForce) != terms)
+    return "has attached force terms without all four of their ports connected";
   return {};
 }
 
@@ -64,15 +68,19 @@ double SlsMechanics::deflection(const Evaluation& evaluation) const {
          (p.k1 + p.k2 + input_sum(evaluation, kAttachedStiffness));
 }
 
-void SlsMechanics::initialize(const Evaluation& evaluation, std::span<double> own_state) const {
-  // A rested muscle: the dashpot is relaxed, x_d = x.
-  if (deflection_imposed()) {
-    own_state[0] = input(evaluation, kDeflection);
-    return;
+double SlsMechanics::rest_deflection(const Evaluation& evaluation) const {
+  if (deflection_imposed()) return input(evaluation, kDeflection);
+  const auto& p = run_parameters(evaluation);
+  if (!has_attachments()) {
+    return sls::rest_deflection(p, input(evaluation, kForce), input(evaluation, kThermalForce));
   }
-  // Attached branches start relaxed as well, so they carry nothing here.
-  own_state[0] = sls::rest_deflection(run_parameters(evaluation), input(evaluation, kForce),
-                                      input(evaluation, kThermalForce));
+  return (input(evaluation, kForce) - input(evaluation, kThermalForce) - p.force_offset -
+          input_sum(evaluation, kAttachedRestForce)) /
+         (p.k1 + input_sum(evaluation, kAttachedRestStiffness));
+}
+
+void SlsMechanics::initialize(const Evaluation& evaluation, std::span<double> own_state) const {
+  own_state[0] = rest_deflection(evaluation);  // a rested muscle: the dashpot relaxed, x_d = x
 }
 
 void SlsMechanics::compute_outputs(const Evaluation& evaluation) const {
@@ -86,10 +94,7 @@ void SlsMechanics::compute_outputs(const Evaluation& evaluation) const {
   set_output(evaluation, kDeflectionOutput, x);
   set_output(evaluation, kElasticForce, elastic);
   set_output(evaluation, kForceOutput, force);
-  set_output(evaluation, kRestDeflection,
-             deflection_imposed() ? x
-                                  : sls::rest_deflection(p, input(evaluation, kForce),
-                                                         input(evaluation, kThermalForce)));
+  set_output(evaluation, kRestDeflection, rest_deflection(evaluation));
 }
 
 void SlsMechanics::compute_derivatives(const Evaluation& evaluation, double* derivatives) const {

@@ -16,17 +16,26 @@ namespace tcpmsim {
 // an output; with its "force" input connected (an imposed force) F is the input and x follows
 // algebraically from (7.5). Exactly one of the two must be connected.
 //
-// Further force branches attach without the SLS knowing them (models/effects): each publishes
-// its force as affine in the deflection at its present state, F_j = s_j x + b_j, through the
+// Further force terms attach without the SLS knowing them (models/effects). Each publishes its
+// force as affine in the deflection at its present state, F_j = s_j x + b_j, through the
 // fan-in inputs "attached_stiffness" (s_j) and "attached_force" (b_j), so that (7.5) becomes
 //     F = F_l + F_T + phi_0 + S x + B,   S = sum s_j, B = sum b_j,
-// and stays solvable for x under an imposed force. Such a branch starts relaxed at the
-// deflection the muscle rests at, the port-only output "rest_deflection" (x itself when x is
-// imposed; (F - F_T - phi_0)/k1 under an imposed force, where every relaxed branch carries
-// nothing).
+// and stays solvable for x under an imposed force; and the same pair at rest (every internal
+// dashpot relaxed) through "attached_rest_stiffness" and "attached_rest_force": a Maxwell arm
+// carries nothing at rest, a parallel spring its stiffness. The muscle starts at rest, at the
+// port-only output "rest_deflection": x itself when x is imposed, and under an imposed force
+// (F - F_T - phi_0 - B_rest) / (k1 + S_rest); the attached terms start at rest there too.
 class SlsMechanics final : public ParametricComponent<SlsParameters> {
  public:
-  enum Input { kThermalForce, kDeflection, kForce, kAttachedStiffness, kAttachedForce };
+  enum Input {
+    kThermalForce,
+    kDeflection,
+    kForce,
+    kAttachedStiffness,
+    kAttachedForce,
+    kAttachedRestStiffness,
+    kAttachedRestForce
+  };
   enum Output { kForceOutput, kDeflectionOutput, kElasticForce, kRestDeflection };
 
   SlsMechanics(std::string group, SlsParameters defaults,
@@ -53,6 +62,7 @@ class SlsMechanics final : public ParametricComponent<SlsParameters> {
 
  private:
   double deflection(const Evaluation& evaluation) const;
+  double rest_deflection(const Evaluation& evaluation) const;
   bool has_attachments() const { return source_count(kAttachedStiffness) > 0; }
 };
 

@@ -57,6 +57,11 @@ const Kind* KindRegistry::find(std::string_view category, std::string_view name)
 const Kind& KindRegistry::select(std::string_view category_name, const ConfigNode& node) const {
   const Category& category = this->category(category_name);
   const auto names = kind_names(category_name);
+  if (!category.top_level()) {
+    std::string listed;
+    for (const auto& name : names) listed += (listed.empty() ? "" : ", ") + name;
+    node.mark_part(category.name + ": " + listed);
+  }
   std::string name;
   if (category.selector.empty()) {
     name = category.default_kind.empty() ? names.front() : category.default_kind;

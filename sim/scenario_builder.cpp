@@ -5,6 +5,10 @@
 namespace tcpmsim {
 
 namespace {
+std::string article(const std::string& noun) {
+  return (noun.find_first_of("aeiou") == 0 ? "an " : "a ") + noun;
+}
+
 // Names that would collide with the record's own datasets and groups or the scenario's
 // sections.
 const std::set<std::string> kReservedNames{"time", "inputs", "scenario", "output", "solver"};
@@ -92,7 +96,13 @@ const InstanceDeclaration& ScenarioBuilder::named(const ConfigNode& name_node,
 
 const InstanceDeclaration& ScenarioBuilder::linked(const ConfigNode& node, std::string_view key,
                                                    std::string_view category) const {
-  if (const auto name = node.find(key)) return named(*name, category);
+  const std::string what(category);
+  if (const auto name = node.find(key)) {
+    const InstanceDeclaration& found = named(*name, category);
+    node.describe_key(key, "name of " + article(what), "the only " + what);
+    return found;
+  }
+  node.describe_key(key, "name of " + article(what), "the only " + what);
   const auto candidates = instances(category);
   if (candidates.size() == 1) return *candidates.front();
   if (candidates.empty())
@@ -104,6 +114,8 @@ const InstanceDeclaration& ScenarioBuilder::linked(const ConfigNode& node, std::
 std::vector<const InstanceDeclaration*> ScenarioBuilder::linked_all(
     const ConfigNode& node, std::string_view key, std::string_view plural_key,
     std::string_view category) const {
+  node.describe_key(plural_key, "names of " + kinds_.category(category).plural,
+                    "the one named by '" + std::string(key) + "'");
   if (const auto list = node.find(plural_key)) {
     std::vector<const InstanceDeclaration*> found;
     std::set<std::string> seen;

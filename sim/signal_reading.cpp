@@ -4,6 +4,7 @@ namespace tcpmsim {
 
 std::unique_ptr<Signal> read_signal(const ConfigNode& node, std::string_view si_unit,
                                     const SignalContext& context) {
+  node.mark_part("signal in " + std::string(si_unit));
   const KindRegistry& kinds = *context.kinds;
   const Category& category = kinds.category(kSignalCategory);
   if (node.is_scalar()) {

@@ -33,6 +33,10 @@ ValueCheck ValueCheck::fraction() {
   return between(0.0, 1.0);
 }
 
+bool ValueCheck::unbounded() const {
+  return std::isinf(lower_) && lower_ < 0.0 && std::isinf(upper_);
+}
+
 bool ValueCheck::accepts(double value) const {
   if (lower_open_ ? !(value > lower_) : !(value >= lower_)) return false;
   return value <= upper_;

@@ -17,6 +17,7 @@ class ValueCheck {
   static ValueCheck between(double lower, double upper);  // inclusive
   static ValueCheck fraction();                           // [0, 1]
   bool accepts(double value) const;
+  bool unbounded() const;
   // "a positive value", "a value in [0, 1]", ... followed by " in <unit>" when given.
   std::string expectation(std::string_view unit = "") const;
 

@@ -16,6 +16,8 @@ void attach_maxwell_branch(const ConfigNode& section, const MuscleAttachment& mu
   system.connect(branch, "rest_deflection", muscle.muscle + ".rest_deflection");
   system.connect(muscle.muscle + ".attached_stiffness", muscle.group + ".stiffness");
   system.connect(muscle.muscle + ".attached_force", muscle.group + ".offset_force");
+  system.connect(muscle.muscle + ".attached_rest_stiffness", muscle.group + ".rest_stiffness");
+  system.connect(muscle.muscle + ".attached_rest_force", muscle.group + ".rest_force");
 }
 
 void attach_free_convection(const ConfigNode& section, const MuscleAttachment& muscle,
@@ -35,7 +37,8 @@ void attach_free_convection(const ConfigNode& section, const MuscleAttachment& m
 }  // namespace
 
 void register_effect_kinds(KindRegistry& kinds) {
-  kinds.add({kEffectCategory, "maxwell_branch",
+  kinds.add({kEffectCategory,
+             "maxwell_branch",
              "a spring in series with a dashpot, in parallel with the SLS: one more relaxation "
              "time c_b/k_b (generalized Maxwell solid)",
              {{example_muscle_scenario("  effects:\n    - {type: maxwell_branch, name: slow, "
@@ -43,7 +46,8 @@ void register_effect_kinds(KindRegistry& kinds) {
                                        ""),
                "muscle.effects[0]"}},
              EffectBuilder(attach_maxwell_branch)});
-  kinds.add({kEffectCategory, "free_convection",
+  kinds.add({kEffectCategory,
+             "free_convection",
              "laminar free convection, Q = G dT_ref (dT/dT_ref)^(5/4), in the thermal node's "
              "heat balance (physical form)",
              {{R"(scenario: {name: example, duration: 10 s}

@@ -21,6 +21,8 @@ std::vector<OutputDeclaration> MaxwellBranch::outputs() const {
   // The affine pair is a port for the SLS only; the force is what the record shows.
   return {{"stiffness", "N/m", false, false},
           {"offset_force", "N", false, false},
+          {"rest_stiffness", "N/m", false, false},
+          {"rest_force", "N", false, false},
           {"force", "N", true}};
 }
 
@@ -32,11 +34,14 @@ void MaxwellBranch::compute_outputs(const Evaluation& evaluation) const {
   const auto& p = run_parameters(evaluation);
   set_output(evaluation, kStiffness, p.stiffness);
   set_output(evaluation, kOffsetForce, -p.stiffness * state(evaluation, 0));
+  set_output(evaluation, kRestStiffness, 0.0);
+  set_output(evaluation, kRestForce, 0.0);
 }
 
 void MaxwellBranch::compute_observations(const Evaluation& evaluation) const {
   const auto& p = run_parameters(evaluation);
-  set_output(evaluation, kForce, p.stiffness * (input(evaluation, kDeflection) - state(evaluation, 0)));
+  set_output(evaluation, kForce,
+             p.stiffness * (input(evaluation, kDeflection) - state(evaluation, 0)));
 }
 
 void MaxwellBranch::compute_derivatives(const Evaluation& evaluation, double* derivatives) const {

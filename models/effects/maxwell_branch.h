@@ -15,8 +15,9 @@ namespace tcpmsim {
 // so a deflection step dx relaxes as k_b dx exp(-t k_b / c_b) beside the SLS's own
 // k2 dx exp(-t k2 / c). It publishes its force as affine in the deflection at its present
 // state, F_b = s x + b with s = k_b and b = -k_b y (the muscle's "attached_stiffness" and
-// "attached_force" ports), so that the SLS can solve (7.5) for x under an imposed force; and
-// F_b itself (observed) for the record. It starts relaxed, y = x at the muscle's rest.
+// "attached_force" ports), so that the SLS can solve (7.5) for x under an imposed force; nothing
+// at rest (the relaxed arm carries no force); and F_b itself (observed) for the record. It
+// starts relaxed, y = x at the muscle's rest.
 struct MaxwellBranchParameters {
   double stiffness = 0.0;  // k_b [N/m]
   double damping = 0.0;    // c_b [N s/m]
@@ -25,7 +26,7 @@ struct MaxwellBranchParameters {
 class MaxwellBranch final : public ParametricComponent<MaxwellBranchParameters> {
  public:
   enum Input { kDeflection, kRestDeflection };
-  enum Output { kStiffness, kOffsetForce, kForce };
+  enum Output { kStiffness, kOffsetForce, kRestStiffness, kRestForce, kForce };
   MaxwellBranch(std::string group, MaxwellBranchParameters defaults,
                 ParameterBindings<MaxwellBranchParameters> bindings = {});
   // Keys stiffness, damping.

@@ -52,6 +52,20 @@ struct ConfigDocument {
   std::set<std::string> consumed;
   std::shared_ptr<const UnitSystem> units;
   std::map<std::string, std::string> parameter_prefixes;  // scenario path -> parameter path
+  std::vector<KeyRead> reads;
+  std::map<std::string, std::size_t> read_at;  // path -> index in reads
+
+  KeyRead& read(const std::string& path) {
+    const auto [found, added] = read_at.try_emplace(path, reads.size());
+    if (added) reads.push_back({path, {}, {}, {}, false, false});
+    return reads[found->second];
+  }
+  void log(const std::string& path, std::string expected, const ValueCheck& check = {}) {
+    KeyRead& entry = read(path);
+    if (entry.part) return;  // what the section is says more than how it was read
+    entry.expected = std::move(expected);
+    entry.check = check.unbounded() ? "" : check.expectation();
+  }
 };
 
 namespace {
@@ -60,6 +74,10 @@ std::string number_text(double value) {
   std::ostringstream out;
   out << value;
   return out.str();
+}
+
+std::string quantity_text(std::string_view si_unit) {
+  return si_unit == "1" ? std::string("number") : "quantity in " + std::string(si_unit);
 }
 
 std::string join(std::string_view path, std::string_view key) {
@@ -270,6 +288,11 @@ void ConfigNode::fail(const std::string& problem) const {
 }
 
 bool ConfigNode::has(std::string_view key) const {
+  document_->read(child_path(key)).optional = true;
+  return present(key);
+}
+
+bool ConfigNode::present(std::string_view key) const {
   document_->known_keys[path_].insert(std::string(key));
   const YAML::Node& node = node_;  // const access never inserts
   return node.IsMap() && node[std::string(key)].IsDefined();
@@ -302,7 +325,7 @@ void ConfigNode::fail_missing(std::string_view key) const {
 ConfigNode ConfigNode::at(std::string_view key) const {
   if (!node_.IsMap())
     fail("expected a mapping with key '" + std::string(key) + "', got a " + node_kind(node_));
-  if (!has(key)) fail_missing(key);
+  if (!present(key)) fail_missing(key);
   const std::string path = child_path(key);
   document_->consumed.insert(path);
   const YAML::Node& node = node_;
@@ -341,6 +364,7 @@ std::vector<std::pair<std::string, ConfigNode>> ConfigNode::entries() const {
 }
 
 double ConfigNode::as_quantity(std::string_view si_unit, const ValueCheck& check) const {
+  document_->log(path_, quantity_text(si_unit), check);
   const bool dimensionless = si_unit == "1";
   const std::string wanted =
       dimensionless ? "a dimensionless number" : "a quantity in " + std::string(si_unit);
@@ -381,6 +405,7 @@ double ConfigNode::as_number(const ValueCheck& check) const {
 }
 
 long ConfigNode::as_integer(const ValueCheck& check) const {
+  document_->log(path_, "integer", check);
   if (!node_.IsScalar()) fail("expected an integer, got a " + node_kind(node_));
   const std::string text = trim(node_.Scalar());
   long value = 0;
@@ -395,6 +420,7 @@ long ConfigNode::as_integer(const ValueCheck& check) const {
 }
 
 bool ConfigNode::as_bool() const {
+  document_->log(path_, "true or false");
   bool value = false;
   if (!node_.IsScalar() || !YAML::convert<bool>::decode(node_, value)) {
     fail("expected true or false, got '" + (node_.IsScalar() ? node_.Scalar() : node_kind(node_)) +
@@ -404,6 +430,7 @@ bool ConfigNode::as_bool() const {
 }
 
 std::string ConfigNode::as_text() const {
+  document_->log(path_, "text");
   if (!node_.IsScalar()) fail("expected a text value, got a " + node_kind(node_));
   return node_.Scalar();
 }
@@ -414,6 +441,9 @@ std::string ConfigNode::as_choice(std::initializer_list<std::string_view> option
 
 std::string ConfigNode::as_choice(const std::vector<std::string>& candidates) const {
   const std::string value = as_text();
+  std::string options;
+  for (const auto& option : candidates) options += (options.empty() ? "" : ", ") + option;
+  document_->log(path_, "one of " + options);
   if (std::find(candidates.begin(), candidates.end(), value) != candidates.end()) return value;
   std::string listed;
   for (const auto& option : candidates) listed += (listed.empty() ? "" : ", ") + option;
@@ -446,8 +476,12 @@ void ConfigNode::record_default(std::string_view key, const std::string& value) 
 
 double ConfigNode::quantity_or(std::string_view key, std::string_view si_unit, double fallback,
                                const ValueCheck& check) const {
+  const std::string stated =
+      number_text(fallback) + (si_unit == "1" ? "" : " " + std::string(si_unit));
+  document_->log(child_path(key), quantity_text(si_unit), check);
+  document_->read(child_path(key)).fallback = stated;
   if (auto value = find(key)) return value->as_quantity(si_unit, check);
-  record_default(key, number_text(fallback) + (si_unit == "1" ? "" : " " + std::string(si_unit)));
+  record_default(key, stated);
   return fallback;
 }
 
@@ -464,12 +498,16 @@ long ConfigNode::integer(std::string_view key, const ValueCheck& check) const {
 }
 
 long ConfigNode::integer_or(std::string_view key, long fallback, const ValueCheck& check) const {
+  document_->log(child_path(key), "integer", check);
+  document_->read(child_path(key)).fallback = std::to_string(fallback);
   if (auto value = find(key)) return value->as_integer(check);
   record_default(key, std::to_string(fallback));
   return fallback;
 }
 
 bool ConfigNode::boolean_or(std::string_view key, bool fallback) const {
+  document_->log(child_path(key), "true or false");
+  document_->read(child_path(key)).fallback = fallback ? "true" : "false";
   if (auto value = find(key)) return value->as_bool();
   record_default(key, fallback ? "true" : "false");
   return fallback;
@@ -497,6 +535,10 @@ std::string ConfigNode::choice_or(std::string_view key,
 
 std::string ConfigNode::choice_or(std::string_view key, const std::vector<std::string>& options,
                                   std::string_view fallback) const {
+  std::string listed;
+  for (const auto& option : options) listed += (listed.empty() ? "" : ", ") + option;
+  document_->log(child_path(key), "one of " + listed);
+  document_->read(child_path(key)).fallback = std::string(fallback);
   if (auto value = find(key)) return value->as_choice(options);
   record_default(key, std::string(fallback));
   return std::string(fallback);
@@ -553,6 +595,24 @@ void find_unknown(const ConfigDocument& document, const YAML::Node& node, const 
   }
 }
 }  // namespace
+
+std::vector<KeyRead> ConfigNode::reads() const {
+  return document_->reads;
+}
+
+void ConfigNode::mark_part(const std::string& what) const {
+  KeyRead& entry = document_->read(path_);
+  if (entry.part) return;  // the outermost description stands
+  entry.expected = what;
+  entry.part = true;
+}
+
+void ConfigNode::describe_key(std::string_view key, const std::string& expected,
+                              const std::string& fallback) const {
+  KeyRead& entry = document_->read(child_path(key));
+  entry.expected = expected;
+  if (!fallback.empty()) entry.fallback = fallback;
+}
 
 void ConfigNode::reject_unknown_keys() const {
   find_unknown(*document_, document_->root, "");

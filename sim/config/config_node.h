@@ -18,6 +18,17 @@ namespace tcpmsim {
 
 struct ConfigDocument;
 
+// What a scenario's reader asked of one key: the listing of kinds is made of these, so that it
+// says what the code reads.
+struct KeyRead {
+  std::string path;       // in the scenario
+  std::string expected;   // "quantity in N/m", "number", "integer", "one of a, b", ...
+  std::string check;      // "a positive value"; empty: any
+  std::string fallback;   // the default when the key is absent; empty: none
+  bool optional = false;  // may be absent (asked with find or has)
+  bool part = false;      // a section another kind reads (a signal, an effect)
+};
+
 // A node of a scenario file, read strictly: every value is located (file:line:col or the
 // --set that produced it), typed, unit-converted to SI and range-checked; every key the
 // program does not ask for is reported as unknown, with a suggestion.
@@ -91,6 +102,15 @@ class ConfigNode {
   std::pair<double, double> interval(std::string_view key, std::string_view si_unit,
                                      const ValueCheck& check = {}) const;
 
+  // Every key read so far, in reading order.
+  std::vector<KeyRead> reads() const;
+  // Records this section as one another kind reads (described by `what`).
+  void mark_part(const std::string& what) const;
+  // Describes a key for the listing of kinds when the way it is read does not say it all
+  // (a quantity or a keyword; an instance's name with a default).
+  void describe_key(std::string_view key, const std::string& expected,
+                    const std::string& fallback = "") const;
+
   // After reading: reports the first key nobody asked for, with a "did you mean".
   void reject_unknown_keys() const;
   // The document as read, with overrides applied and defaults filled in.
@@ -101,6 +121,7 @@ class ConfigNode {
   ConfigNode child(const YAML::Node& node, std::string path) const;
   std::string child_path(std::string_view key) const;
   void record_default(std::string_view key, const std::string& value) const;
+  bool present(std::string_view key) const;  // has() without marking the key optional
   [[noreturn]] void fail_missing(std::string_view key) const;
 
   std::shared_ptr<ConfigDocument> document_;

@@ -1,0 +1,115 @@
+#include "sim/kind_listing.h"
+
+#include <map>
+#include <regex>
+#include <sstream>
+
+#include "sim/config/config_node.h"
+#include "sim/scenario.h"
+
+namespace tcpmsim {
+
+namespace {
+
+bool under(const std::string& path, const std::string& root) {
+  return path.size() > root.size() && path.compare(0, root.size(), root) == 0 &&
+         (path[root.size()] == '.' || path[root.size()] == '[');
+}
+
+// "values[3]" -> "values[]": one line for all elements.
+std::string generic(std::string key) {
+  static const std::regex index("\\[[0-9]+\\]");
+  return std::regex_replace(key, index, "[]");
+}
+
+std::string row(const KindKey& key, bool markdown) {
+  std::string range = key.check.empty() ? "" : key.check;
+  const std::string fallback = !key.fallback.empty() ? "default " + key.fallback
+                               : key.optional        ? "optional"
+                                                     : "required";
+  std::ostringstream line;
+  if (markdown) {
+    line << "| `" << key.key << "` | " << key.expected << " | " << range << " | " << fallback
+         << " |\n";
+  } else {
+    line << "    " << key.key << ' ';
+    for (std::size_t pad = key.key.size(); pad < 35; ++pad) line << ' ';
+    line << key.expected << (range.empty() ? "" : ", " + range) << "; " << fallback << "\n";
+  }
+  return line.str();
+}
+
+}  // namespace
+
+std::vector<KindKey> kind_keys(const KindRegistry& kinds, const Kind& kind,
+                               std::shared_ptr<const UnitSystem> units) {
+  std::vector<KindKey> keys;
+  std::map<std::string, std::size_t> seen;
+  for (const auto& example : kind.examples) {
+    const ConfigNode root = ConfigNode::load_text(example.text, kind.name + " example", {}, units);
+    build_scenario(root, kinds);
+    const auto reads = root.reads();
+    std::vector<std::string> parts;  // sections below this one that another kind reads
+    for (const auto& read : reads) {
+      if (!under(read.path, example.node)) continue;
+      bool inside_part = false;
+      for (const auto& part : parts) inside_part = inside_part || under(read.path, part);
+      if (inside_part) continue;
+      if (read.part) parts.push_back(read.path);
+      if (read.expected.empty()) continue;
+      const std::string key = generic(read.path.substr(example.node.size() + 1));
+      if (key == kinds.category(kind.category).selector) continue;  // said by the category
+      const auto [found, added] = seen.try_emplace(key, keys.size());
+      if (added) {
+        keys.push_back({key, read.expected, read.check, read.fallback, read.optional});
+      } else {
+        keys[found->second].optional = keys[found->second].optional || read.optional;
+      }
+    }
+  }
+  return keys;
+}
+
+std::string describe_kinds(const KindRegistry& kinds, std::shared_ptr<const UnitSystem> units,
+                           bool markdown) {
+  std::ostringstream out;
+  if (markdown) {
+    out << "# Kinds of component and signal\n\nMade by `tcpmsim kinds --markdown` from the "
+           "registry: each kind's examples are built and the keys its code reads are listed. "
+           "Quantities take any unit convertible to the one shown.\n\n";
+  }
+  for (const Category& category : kinds.categories()) {
+    if (markdown) {
+      out << "## " << category.name << "\n\n" << category.summary << ".";
+    } else {
+      out << category.name << ": " << category.summary << ".";
+    }
+    if (category.top_level()) {
+      out << " Sections `" << category.name << ":` (one, named " << category.name << ") or `"
+          << category.plural << ": {<name>: ...}`.";
+    }
+    if (!category.selector.empty()) {
+      out << " The kind is named by `" << category.selector << "`"
+          << (category.default_kind.empty() ? "" : " (default " + category.default_kind + ")")
+          << (category.scalar_kind.empty() ? "" : "; a bare quantity is a " + category.scalar_kind)
+          << ".";
+    }
+    if (category.name == "signal") {
+      out << " Values are in the unit of what the signal drives (W in these examples).";
+    }
+    out << "\n\n";
+    for (const Kind* kind : kinds.kinds(category.name)) {
+      if (markdown) {
+        out << "### " << category.name << " `" << kind->name << "`\n\n"
+            << kind->summary << ".\n\n| key | expects | range | default |\n|---|---|---|---|\n";
+      } else {
+        out << "  " << kind->name << ": " << kind->summary << "\n";
+      }
+      for (const auto& key : kind_keys(kinds, *kind, units)) out << row(key, markdown);
+      out << "\n";
+    }
+  }
+  return out.str();
+}
+
+}  // namespace tcpmsim

@@ -1,0 +1,29 @@
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "sim/config/units.h"
+#include "sim/registry.h"
+
+namespace tcpmsim {
+
+// Every category and kind of `kinds` with the keys each reads: its unit, its range, its default.
+// The keys are not written down twice: each kind's examples are built and what the code asked
+// of the scenario is listed, so the listing cannot drift from the code. Sections another kind
+// reads (a signal, an effect) are listed as such, not key by key. `markdown` gives tables.
+std::string describe_kinds(const KindRegistry& kinds, std::shared_ptr<const UnitSystem> units,
+                           bool markdown);
+
+// The keys one kind's examples read under its section (relative paths, "[]" for any index).
+struct KindKey {
+  std::string key;
+  std::string expected;
+  std::string check;
+  std::string fallback;
+  bool optional = false;
+};
+std::vector<KindKey> kind_keys(const KindRegistry& kinds, const Kind& kind,
+                               std::shared_ptr<const UnitSystem> units);
+
+}  // namespace tcpmsim

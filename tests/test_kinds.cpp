@@ -1,0 +1,120 @@
+// The registry of kinds: every kind builds from its examples, the listing in docs/kinds.md is the
+// one the code produces, and a new kind needs nothing from the engine but registration.
+#include <catch2/catch.hpp>
+
+#include <fstream>
+#include <sstream>
+
+#include "models/muscle.h"
+#include "sim/kind_listing.h"
+#include "sim/parametric_component.h"
+#include "tests/support/test_support.h"
+
+using namespace tcpmsim;
+using namespace tcpmsim::testing;
+
+TEST_CASE("Every kind of the standard registry builds and runs from its examples") {
+  const KindRegistry kinds = standard_kinds();
+  int examples = 0;
+  for (const Category& category : kinds.categories()) {
+    INFO(category.name);
+    CHECK_FALSE(kinds.kinds(category.name).empty());
+    for (const Kind* kind : kinds.kinds(category.name)) {
+      INFO(kind->name);
+      REQUIRE_FALSE(kind->examples.empty());
+      for (const auto& example : kind->examples) {
+        const Scenario scenario =
+            load_scenario_text(example.text, kind->name + " example", {"scenario.duration=0.01 s"},
+                               shared_units(), kinds);
+        const Trace trace = simulate(scenario);
+        CHECK(trace.time.back() == 0.01);
+        // The example names the kind it shows.
+        CHECK_FALSE(kind_keys(kinds, *kind, shared_units()).empty());
+        ++examples;
+      }
+    }
+  }
+  CHECK(examples > 25);
+}
+
+TEST_CASE("docs/kinds.md is the listing the registry produces") {
+  std::ifstream file(source_path("docs/kinds.md"));
+  std::stringstream written;
+  written << file.rdbuf();
+  // Regenerate with: build/tcpmsim kinds --markdown > docs/kinds.md
+  CHECK(written.str() == describe_kinds(standard_kinds(), shared_units(), true));
+}
+
+namespace {
+
+// A kind the standard registry does not have, written as a user would: a linear
+// "parallel_spring" effect (F = s x with no state), its builder, its registration.
+struct ParallelSpringParameters {
+  double stiffness = 0.0;
+};
+
+class ParallelSpring final : public ParametricComponent<ParallelSpringParameters> {
+ public:
+  using ParametricComponent::ParametricComponent;
+  std::vector<OutputDeclaration> outputs() const override {
+    return {{"stiffness", "N/m", false, false},
+            {"offset_force", "N", false, false},
+            {"rest_stiffness", "N/m", false, false},
+            {"rest_force", "N", false, false}};
+  }
+  void compute_outputs(const Evaluation& e) const override {
+    set_output(e, 0, run_parameters(e).stiffness);
+    set_output(e, 1, 0.0);
+    set_output(e, 2, run_parameters(e).stiffness);  // elastic: the same at rest
+    set_output(e, 3, 0.0);
+  }
+};
+
+void attach_parallel_spring(const ConfigNode& section, const MuscleAttachment& muscle,
+                            ScenarioBuilder& build) {
+  using P = ParallelSpringParameters;
+  section.declare({"type", "stiffness"});
+  P p;
+  ParameterBindings<P> bind;
+  bind.quantity(section, "stiffness", "N/m", ValueCheck::positive(), p, bind.member(&P::stiffness));
+  build.system().add(
+      std::make_unique<ParallelSpring>(muscle.group, "parallel_spring", p, std::move(bind)));
+  build.system().connect(muscle.muscle + ".attached_stiffness", muscle.group + ".stiffness");
+  build.system().connect(muscle.muscle + ".attached_force", muscle.group + ".offset_force");
+  build.system().connect(muscle.muscle + ".attached_rest_stiffness",
+                         muscle.group + ".rest_stiffness");
+  build.system().connect(muscle.muscle + ".attached_rest_force", muscle.group + ".rest_force");
+}
+
+}  // namespace
+
+TEST_CASE("A kind added outside the engine is built by name, its parameters addressable") {
+  KindRegistry kinds = standard_kinds();
+  kinds.add({kEffectCategory,
+             "parallel_spring",
+             "a spring in parallel with the SLS",
+             {},
+             EffectBuilder(attach_parallel_spring)});
+  const std::string yaml = R"(scenario: {name: test, duration: 5 s}
+output: {rate: 10 Hz}
+muscle:
+  thermal_force: {form: reduced, kappa_P: 7.2e-3 N/J, kappa_c: 131.6e-3 1/s, ambient_temperature: 23 degC}
+  mechanics: {k1: 10.8 N/m, k2: 2.7 N/m, damping: 4.3 N*s/m, force_offset: 0.1 N}
+  resistance: 10 ohm
+  inductance: {quantity: measure, lambda_l: 2.81 mm, lambda_x: 28.8 mm, lambda_0: 0.433}
+  effects: [{type: parallel_spring, stiffness: 4 N/m}]
+drive: {mode: power, power: 0 W}
+load: {type: force, force: 0.4 N}
+)";
+  const Scenario scenario = load_scenario_text(yaml, "test.yaml", {}, shared_units(), kinds);
+  const Trace trace = simulate(scenario);
+  // At rest under 0.4 N with the dashpot relaxed: (k1 + s) x = F - phi_0, from the start on.
+  CHECK(trace["muscle/deflection"].front() == Approx((0.4 - 0.1) / (10.8 + 4.0)).epsilon(1e-12));
+  CHECK(trace["muscle/deflection"].back() == Approx((0.4 - 0.1) / (10.8 + 4.0)).epsilon(1e-9));
+  Context context = scenario.make_context();
+  CHECK(context.parameter("muscle.effects[0].stiffness") == 4.0);
+  // The standard registry does not know it.
+  CHECK_THROWS_WITH(scenario_from_text(yaml),
+                    Catch::Contains("muscle.effects[0].type: expected one of maxwell_branch, "
+                                    "free_convection, got 'parallel_spring'"));
+}
