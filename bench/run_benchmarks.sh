@@ -5,7 +5,25 @@ cd "$(dirname "$0")/.."
 build_dir=${TCPMSIM_BENCH_BUILD_DIR:-build}
 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build_dir" -j"$(nproc)" --target tcpmsim bench_integration bench_maxwell bench_spring_forces \
-  bench_cvode_restart_floor >/dev/null
+  bench_cvode_restart_floor bench_assembly >/dev/null
+echo "== assembling n trivial components: wiring by name and ordering (target: 10 000 in < 1 s, growth ~n)"
+"$build_dir/bench/bench_assembly"
+# The default scenario's integration against the engine before the composition refactor (the
+# run context, the registry): the same benchmark built from that commit, timed in turn with ours.
+reference=${TCPMSIM_REFERENCE_COMMIT:-a5ee02a}
+if git cat-file -e "$reference^{commit}" 2>/dev/null; then
+  echo "== default scenario against commit $reference's engine (target: no more than 5 % slower)"
+  reference_dir=build-reference
+  rm -rf "$reference_dir/source"
+  mkdir -p "$reference_dir/source"
+  git archive "$reference" | tar -x -C "$reference_dir/source"
+  cmake -S "$reference_dir/source" -B "$reference_dir/build" -DCMAKE_BUILD_TYPE=Release -DTCPMSIM_BUILD_TESTS=OFF >/dev/null
+  cmake --build "$reference_dir/build" -j"$(nproc)" --target bench_integration >/dev/null
+  /usr/bin/python3 bench/compare_with_commit.py "$build_dir/bench/bench_integration" \
+    "$reference_dir/build/bench/bench_integration" configs/ch7_identification.yaml 7
+else
+  echo "== (commit $reference is not in this clone: no comparison with the earlier engine)"
+fi
 echo "== default scenario against SciPy (issue: >= 100x at equal accuracy)"
 /usr/bin/python3 bench/bench_default_scenario.py "$build_dir" configs/ch7_identification.yaml
 echo "== Maxwell's sum over 52 non-uniform windings (target < 50 us)"

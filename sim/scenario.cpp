@@ -83,43 +83,32 @@ SolverSettings read_solver(const ConfigNode& root, const System& system) {
   return settings;
 }
 
-// An override: its scenario path (with a plural section's instance written out) and its text.
+// An override: its scenario path (an instance's name written out as its section's path, as
+// the document applies it) and its text as given.
 struct Override {
   std::string path;
-  std::string text;  // "path=value" as given
+  std::string text;
   std::string value;
 };
 
-// Splits the overrides and writes an instance's name as its plural section's path
-// ("left.mechanics.k2" -> "muscles.left.mechanics.k2"). Malformed ones are left for the
-// document to report.
-std::vector<Override> resolve_overrides(const std::string& text, const std::string& name,
-                                        const std::vector<std::string>& overrides,
-                                        const std::shared_ptr<const UnitSystem>& units,
-                                        const KindRegistry& kinds) {
-  std::vector<Override> resolved;
-  std::map<std::string, std::string> section_of;  // instance name -> plural section
-  const ConfigNode root = ConfigNode::load_text(text, name, {}, units);
-  for (const Category& category : kinds.categories()) {
-    if (!category.top_level()) continue;
-    const auto plural = root.find(category.plural);
-    if (!plural || !plural->is_map()) continue;
-    for (const auto& [instance, node] : plural->entries()) section_of[instance] = category.plural;
+std::vector<Override> resolve_overrides(const std::string& text,
+                                        const std::vector<std::string>& overrides) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception&) {
+    // Broken YAML: the document reports it with its position.
   }
+  std::vector<Override> resolved;
   for (const auto& assignment : overrides) {
-    const auto equals = assignment.find('=');
     Override entry{"", assignment, ""};
+    const auto equals = assignment.find('=');
     if (equals != std::string::npos) {
       std::string path = assignment.substr(0, equals);
       path.erase(0, path.find_first_not_of(" \t"));
       path.erase(path.find_last_not_of(" \t") + 1);
-      const auto first = path.substr(0, path.find_first_of(".["));
+      entry.path = expand_instance_path(root, path);
       entry.value = assignment.substr(equals + 1);
-      if (!root.has(first) && section_of.count(first)) {
-        path = section_of[first] + "." + path;
-        entry.text = path + "=" + entry.value;
-      }
-      entry.path = path;
     }
     resolved.push_back(entry);
   }
@@ -182,7 +171,7 @@ Scenario load_scenario_text(const std::string& text, const std::string& name,
     scenario.source = name;
     return scenario;
   }
-  std::vector<Override> resolved = resolve_overrides(text, name, overrides, units, kinds);
+  std::vector<Override> resolved = resolve_overrides(text, overrides);
   // Every override through the document: it checks them all and gives the resolved scenario.
   const ConfigNode everything = ConfigNode::load_text(text, name, texts(resolved), units);
   const Scenario complete = build_scenario(everything, kinds);

@@ -173,6 +173,22 @@ void assign_at(YAML::Node node, const std::vector<std::string>& parts, std::size
   }
 }
 
+}  // namespace
+
+std::string expand_instance_path(const YAML::Node& root, const std::string& path) {
+  const std::string first = path.substr(0, path.find_first_of(".["));
+  if (first.empty() || !root.IsMap() || root[first]) return path;
+  std::string section;
+  for (const auto& entry : root) {
+    if (!entry.second.IsMap() || !entry.second[first]) continue;
+    if (!section.empty()) return path;  // two sections name it: leave the path as written
+    section = entry.first.as<std::string>();
+  }
+  return section.empty() ? path : section + "." + path;
+}
+
+namespace {
+
 std::shared_ptr<ConfigDocument> parse_document(const std::string& text, const std::string& name,
                                                const std::vector<std::string>& overrides,
                                                std::shared_ptr<const UnitSystem> units) {
@@ -199,7 +215,8 @@ std::shared_ptr<ConfigDocument> parse_document(const std::string& text, const st
     if (equals == std::string::npos || equals == 0 || equals + 1 == assignment.size()) {
       throw ConfigError(origin, "", "expected --set key.path=value");
     }
-    const std::string path = trim(assignment.substr(0, equals));
+    const std::string path =
+        expand_instance_path(document->root, trim(assignment.substr(0, equals)));
     YAML::Node value;
     try {
       value = YAML::Load(assignment.substr(equals + 1));

@@ -129,6 +129,11 @@ class ConfigNode {
   std::string path_;
 };
 
+// A --set path whose first key is not a section of the document but an instance in exactly
+// one section's mapping ("m2.mechanics.k2" with `muscles: {m2: ...}`) written out in full
+// ("muscles.m2.mechanics.k2"); any other path as it is.
+std::string expand_instance_path(const YAML::Node& root, const std::string& path);
+
 // Edit distance, for "did you mean" suggestions.
 std::size_t edit_distance(std::string_view a, std::string_view b);
 // The closest candidate within a small distance, or empty.

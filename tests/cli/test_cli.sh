@@ -41,6 +41,19 @@ contains "$work/err" "error: muscle.mechanics.k1: wrong unit in '10.8e-3 N': uni
 expect 3 "a bad --set is a configuration error" -- "$tcpmsim" validate "$config" --set "solver.rtol=-1"
 contains "$work/err" "command line (--set solver.rtol=-1): error: solver.rtol:" "the error points at the --set"
 
+expect 0 "kinds lists every kind" -- "$tcpmsim" kinds
+contains "$work/out" "maxwell_branch" "kinds names the effects"
+contains "$work/out" "stiffness                           quantity in N/m, a positive value; required" "kinds gives a key's unit, range and whether it is required"
+pair="$source_dir/configs/composition/two_muscles.yaml"
+expect 0 "validate a scenario with named instances" -- "$tcpmsim" validate "$pair"
+contains "$work/out" "output /m2/force [N]" "outputs are recorded under the instance's name"
+contains "$work/out" "parameter m2.mechanics.k2 = 5.4 N/m" "validate lists the parameters by path, in SI"
+expect 3 "a bad value for an instance's parameter is a configuration error" -- "$tcpmsim" validate "$pair" \
+  --set "m2.mechanics.k2=-3 mN/mm"
+contains "$work/err" "command line (--set m2.mechanics.k2=-3 mN/mm): error: muscles.m2.mechanics.k2: expected a non-negative value in N/m, got '-3 mN/mm'" "the error names the --set and the key"
+expect 0 "an instance's parameter is set by its path, with units" -- "$tcpmsim" run "$pair" \
+  --set "m2.mechanics.k2=3 mN/mm" --set "scenario.duration=10 s" -o "$work/pair.h5" --quiet
+
 expect 0 "run a short scenario" -- "$tcpmsim" run "$config" --set "scenario.duration=5 s" -o "$work/run.h5" --quiet
 [[ -s $work/run.h5 && ! -e $work/run.h5.partial ]] && echo "ok: complete record, no partial" || { echo "FAIL: record"; failures=$((failures + 1)); }
 
