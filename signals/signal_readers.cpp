@@ -20,7 +20,6 @@
 namespace tcpmsim {
 
 namespace {
-
 using Values = std::span<const double>;
 using Parts = std::vector<std::unique_ptr<Signal>>;
 
@@ -101,7 +100,95 @@ std::unique_ptr<Signal> constant_at(const ConfigNode& value_node, std::string_vi
                      [](Values v, Parts) { return std::make_unique<ConstantSignal>(v[0]); });
 }
 
-std::unique_ptr<Signal> read_steps(const ConfigNode& node, std::string_view unit) {
+std::unique_ptr<Signal> make_ramp(double start, double end, double from, double to) {
+  if (!(end > start)) throw std::invalid_argument("expected end_time after start_time");
+  return std::make_unique<PiecewiseLinearSignal>(std::vector<double>{start, end},
+                                                 std::vector<double>{from, to}, "ramp");
+}
+
+// Hold each level for `hold`, moving between levels at `rate`: a testing machine's step
+// sequence (thesis Fig. 6.3).
+std::unique_ptr<Signal> make_staircase(const std::vector<double>& levels, double hold, double rate,
+                                       double start_time) {
+  double time = start_time;
+  std::vector<double> times{time}, values{levels.front()};
+  for (std::size_t k = 1; k < levels.size(); ++k) {
+    time += hold;
+    times.push_back(time), values.push_back(levels[k - 1]);
+    time += std::abs(levels[k] - levels[k - 1]) / rate;
+    times.push_back(time), values.push_back(levels[k]);
+  }
+  return std::make_unique<PiecewiseLinearSignal>(times, values, "staircase");
+}
+
+// A phase: a quantity in rad (a parameter), `random` (drawn once from the signal's stream), or
+// absent (random or 0).
+double read_phase(const ConfigNode& node, std::string_view key, RandomStream& stream,
+                  bool random_by_default, Declared& declared) {
+  if (auto phase = node.find(key)) {
+    if (phase->is_scalar() && phase->as_text() == "random")
+      return stream.uniform(0.0, 2.0 * std::numbers::pi);
+    return declared.add(*phase, phase->as_quantity("rad"), "rad");
+  }
+  return random_by_default ? stream.uniform(0.0, 2.0 * std::numbers::pi) : 0.0;
+}
+
+struct MultisineSettings {
+  int components = 1;
+  double f_low = 0.0, f_high = 0.0, phase_offset = 0.0;
+  bool scaled = false;  // to [low, high] over duration; else offset and equal amplitudes
+  double low = 0.0, high = 0.0, duration = 0.0, offset = 0.0, amplitude = 0.0;
+};
+
+std::unique_ptr<Signal> make_multisine(const MultisineSettings& s) {
+  if (!(s.f_low < s.f_high)) throw std::invalid_argument("expected band lower < upper");
+  const MultisineSignal unit_signal =
+      MultisineSignal::schroeder(s.components, s.f_low, s.f_high, s.phase_offset);
+  if (s.scaled) {
+    if (!(s.low < s.high)) throw std::invalid_argument("expected range lower < upper");
+    return std::make_unique<MultisineSignal>(unit_signal.scaled_to(s.low, s.high, s.duration));
+  }
+  return std::make_unique<MultisineSignal>(
+      unit_signal.with_equal_amplitudes(s.offset, s.amplitude));
+}
+
+std::unique_ptr<Signal> make_random_steps(const RandomStepsSettings& settings, std::uint64_t seed,
+                                          const std::string& purpose) {
+  if (!(settings.low < settings.high)) throw std::invalid_argument("expected range lower < upper");
+  if (switching_probability(settings) > 1.0) {
+    throw std::invalid_argument(
+        "the switching probability 1/(0.5 tau_p f_s) exceeds 1; need tau_p >= 2/f_s");
+  }
+  RandomStream stream(seed, purpose);
+  return make_random_steps(settings, stream);
+}
+
+std::unique_ptr<Signal> make_log_sweep(double offset, double amplitude, double f_start,
+                                       double f_end, double duration) {
+  if (!(f_start < f_end)) throw std::invalid_argument("expected band lower < upper");
+  return std::make_unique<LogSweepSignal>(offset, amplitude, f_start, f_end, duration);
+}
+
+std::unique_ptr<Signal> make_sequence(Values durations, Parts parts) {
+  std::vector<SequenceSignal::Segment> built;
+  double start = 0.0;
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    built.push_back({start, std::move(parts[k])});
+    start += durations[k];
+  }
+  return std::make_unique<SequenceSignal>(std::move(built));
+}
+
+}  // namespace
+
+namespace signal_readers {
+
+std::unique_ptr<Signal> constant(const ConfigNode& node, std::string_view unit,
+                                 const SignalContext&) {
+  return constant_at(node.is_scalar() ? node : node.at("value"), unit);
+}
+
+std::unique_ptr<Signal> steps(const ConfigNode& node, std::string_view unit, const SignalContext&) {
   Declared declared;
   const double initial = declared.quantity(node, "initial", unit);
   const auto times_node = node.at("times");
@@ -125,13 +212,7 @@ std::unique_ptr<Signal> read_steps(const ConfigNode& node, std::string_view unit
                      });
 }
 
-std::unique_ptr<Signal> make_ramp(double start, double end, double from, double to) {
-  if (!(end > start)) throw std::invalid_argument("expected end_time after start_time");
-  return std::make_unique<PiecewiseLinearSignal>(std::vector<double>{start, end},
-                                                 std::vector<double>{from, to}, "ramp");
-}
-
-std::unique_ptr<Signal> read_ramp(const ConfigNode& node, std::string_view unit) {
+std::unique_ptr<Signal> ramp(const ConfigNode& node, std::string_view unit, const SignalContext&) {
   Declared declared;
   const double start = declared.quantity(node, "start_time", "s", ValueCheck::non_negative());
   const double end = declared.quantity(node, "end_time", "s");
@@ -142,7 +223,8 @@ std::unique_ptr<Signal> read_ramp(const ConfigNode& node, std::string_view unit)
                      [](Values v, Parts) { return make_ramp(v[0], v[1], v[2], v[3]); });
 }
 
-std::unique_ptr<Signal> read_piecewise_linear(const ConfigNode& node, std::string_view unit) {
+std::unique_ptr<Signal> piecewise_linear(const ConfigNode& node, std::string_view unit,
+                                         const SignalContext&) {
   Declared declared;
   const auto times_node = node.at("times");
   const auto times = declared.quantities(times_node, "s");
@@ -163,22 +245,8 @@ std::unique_ptr<Signal> read_piecewise_linear(const ConfigNode& node, std::strin
                      });
 }
 
-// Hold each level for `hold`, moving between levels at `rate`: a testing machine's step
-// sequence (thesis Fig. 6.3).
-std::unique_ptr<Signal> make_staircase(const std::vector<double>& levels, double hold, double rate,
-                                       double start_time) {
-  double time = start_time;
-  std::vector<double> times{time}, values{levels.front()};
-  for (std::size_t k = 1; k < levels.size(); ++k) {
-    time += hold;
-    times.push_back(time), values.push_back(levels[k - 1]);
-    time += std::abs(levels[k] - levels[k - 1]) / rate;
-    times.push_back(time), values.push_back(levels[k]);
-  }
-  return std::make_unique<PiecewiseLinearSignal>(times, values, "staircase");
-}
-
-std::unique_ptr<Signal> read_staircase(const ConfigNode& node, std::string_view unit) {
+std::unique_ptr<Signal> staircase(const ConfigNode& node, std::string_view unit,
+                                  const SignalContext&) {
   Declared declared;
   const auto levels_node = node.at("levels");
   const auto levels = declared.quantities(levels_node, unit);
@@ -193,20 +261,8 @@ std::unique_ptr<Signal> read_staircase(const ConfigNode& node, std::string_view 
       [n](Values v, Parts) { return make_staircase(slice(v, 0, n), v[n], v[n + 1], v[n + 2]); });
 }
 
-// A phase: a quantity in rad (a parameter), `random` (drawn once from the signal's stream), or
-// absent (random or 0).
-double read_phase(const ConfigNode& node, std::string_view key, RandomStream& stream,
-                  bool random_by_default, Declared& declared) {
-  if (auto phase = node.find(key)) {
-    if (phase->is_scalar() && phase->as_text() == "random")
-      return stream.uniform(0.0, 2.0 * std::numbers::pi);
-    return declared.add(*phase, phase->as_quantity("rad"), "rad");
-  }
-  return random_by_default ? stream.uniform(0.0, 2.0 * std::numbers::pi) : 0.0;
-}
-
-std::unique_ptr<Signal> read_sine(const ConfigNode& node, std::string_view unit,
-                                  const SignalContext& context) {
+std::unique_ptr<Signal> sine(const ConfigNode& node, std::string_view unit,
+                             const SignalContext& context) {
   RandomStream stream(context.seed, node.path());
   Declared declared;
   const double offset = declared.quantity(node, "offset", unit);
@@ -222,27 +278,8 @@ std::unique_ptr<Signal> read_sine(const ConfigNode& node, std::string_view unit,
                      });
 }
 
-struct MultisineSettings {
-  int components = 1;
-  double f_low = 0.0, f_high = 0.0, phase_offset = 0.0;
-  bool scaled = false;  // to [low, high] over duration; else offset and equal amplitudes
-  double low = 0.0, high = 0.0, duration = 0.0, offset = 0.0, amplitude = 0.0;
-};
-
-std::unique_ptr<Signal> make_multisine(const MultisineSettings& s) {
-  if (!(s.f_low < s.f_high)) throw std::invalid_argument("expected band lower < upper");
-  const MultisineSignal unit_signal =
-      MultisineSignal::schroeder(s.components, s.f_low, s.f_high, s.phase_offset);
-  if (s.scaled) {
-    if (!(s.low < s.high)) throw std::invalid_argument("expected range lower < upper");
-    return std::make_unique<MultisineSignal>(unit_signal.scaled_to(s.low, s.high, s.duration));
-  }
-  return std::make_unique<MultisineSignal>(
-      unit_signal.with_equal_amplitudes(s.offset, s.amplitude));
-}
-
-std::unique_ptr<Signal> read_multisine(const ConfigNode& node, std::string_view unit,
-                                       const SignalContext& context) {
+std::unique_ptr<Signal> multisine(const ConfigNode& node, std::string_view unit,
+                                  const SignalContext& context) {
   Declared declared;
   MultisineSettings s;
   s.components = static_cast<int>(node.integer("components", ValueCheck::at_least(1)));
@@ -276,19 +313,8 @@ std::unique_ptr<Signal> read_multisine(const ConfigNode& node, std::string_view 
                      });
 }
 
-std::unique_ptr<Signal> make_random_steps(const RandomStepsSettings& settings, std::uint64_t seed,
-                                          const std::string& purpose) {
-  if (!(settings.low < settings.high)) throw std::invalid_argument("expected range lower < upper");
-  if (switching_probability(settings) > 1.0) {
-    throw std::invalid_argument(
-        "the switching probability 1/(0.5 tau_p f_s) exceeds 1; need tau_p >= 2/f_s");
-  }
-  RandomStream stream(seed, purpose);
-  return make_random_steps(settings, stream);
-}
-
-std::unique_ptr<Signal> read_random_steps(const ConfigNode& node, std::string_view unit,
-                                          const SignalContext& context) {
+std::unique_ptr<Signal> random_steps(const ConfigNode& node, std::string_view unit,
+                                     const SignalContext& context) {
   Declared declared;
   RandomStepsSettings settings;
   std::tie(settings.low, settings.high) = declared.interval(node, "range", unit);
@@ -317,14 +343,8 @@ std::unique_ptr<Signal> read_random_steps(const ConfigNode& node, std::string_vi
                      });
 }
 
-std::unique_ptr<Signal> make_log_sweep(double offset, double amplitude, double f_start,
-                                       double f_end, double duration) {
-  if (!(f_start < f_end)) throw std::invalid_argument("expected band lower < upper");
-  return std::make_unique<LogSweepSignal>(offset, amplitude, f_start, f_end, duration);
-}
-
-std::unique_ptr<Signal> read_log_sweep(const ConfigNode& node, std::string_view unit,
-                                       const SignalContext& context) {
+std::unique_ptr<Signal> log_sweep(const ConfigNode& node, std::string_view unit,
+                                  const SignalContext& context) {
   Declared declared;
   const auto [f_start, f_end] = declared.interval(node, "band", "Hz", ValueCheck::positive());
   const double offset = declared.quantity(node, "offset", unit);
@@ -336,18 +356,8 @@ std::unique_ptr<Signal> read_log_sweep(const ConfigNode& node, std::string_view 
                      [](Values v, Parts) { return make_log_sweep(v[2], v[3], v[0], v[1], v[4]); });
 }
 
-std::unique_ptr<Signal> make_sequence(Values durations, Parts parts) {
-  std::vector<SequenceSignal::Segment> built;
-  double start = 0.0;
-  for (std::size_t k = 0; k < parts.size(); ++k) {
-    built.push_back({start, std::move(parts[k])});
-    start += durations[k];
-  }
-  return std::make_unique<SequenceSignal>(std::move(built));
-}
-
-std::unique_ptr<Signal> read_sequence(const ConfigNode& node, std::string_view unit,
-                                      const SignalContext& context) {
+std::unique_ptr<Signal> sequence(const ConfigNode& node, std::string_view unit,
+                                 const SignalContext& context) {
   const auto segments_node = node.at("segments");
   const auto segments = segments_node.elements();
   if (segments.empty()) segments_node.fail("expected at least one segment");
@@ -374,8 +384,8 @@ std::unique_ptr<Signal> read_sequence(const ConfigNode& node, std::string_view u
                      std::move(recipes));
 }
 
-std::unique_ptr<Signal> read_periodic(const ConfigNode& node, std::string_view unit,
-                                      const SignalContext& context) {
+std::unique_ptr<Signal> periodic(const ConfigNode& node, std::string_view unit,
+                                 const SignalContext& context) {
   Declared declared;
   const double period = declared.quantity(node, "period", "s", ValueCheck::positive());
   SignalContext inner = context;
@@ -391,7 +401,8 @@ std::unique_ptr<Signal> read_periodic(const ConfigNode& node, std::string_view u
 
 // The thesis' control-task references (7.3.4): a stepped sine sweep (15 log-spaced frequencies
 // in [10^-2.4, 10^-1.1] Hz, 3 periods each) and a step sequence (7 levels held 20 s).
-std::unique_ptr<Signal> read_stepped_sine_sweep(const ConfigNode& node, std::string_view unit) {
+std::unique_ptr<Signal> stepped_sine_sweep(const ConfigNode& node, std::string_view unit,
+                                           const SignalContext&) {
   node.declare({"type", "offset", "amplitude", "band", "frequencies", "periods", "start_time"});
   Declared declared;
   SineSweepSettings settings;
@@ -423,7 +434,8 @@ std::unique_ptr<Signal> read_stepped_sine_sweep(const ConfigNode& node, std::str
                      });
 }
 
-std::unique_ptr<Signal> read_step_sequence(const ConfigNode& node, std::string_view unit) {
+std::unique_ptr<Signal> step_sequence(const ConfigNode& node, std::string_view unit,
+                                      const SignalContext&) {
   node.declare({"type", "range", "steps", "hold", "start_time", "initial"});
   Declared declared;
   StepSequenceSettings settings;
@@ -445,64 +457,6 @@ std::unique_ptr<Signal> read_step_sequence(const ConfigNode& node, std::string_v
                        if (initial) changed.initial = v[4];
                        return make_step_sequence(changed);
                      });
-}
-
-}  // namespace
-
-namespace signal_readers {
-
-std::unique_ptr<Signal> constant(const ConfigNode& node, std::string_view si_unit,
-                                 const SignalContext&) {
-  if (node.is_scalar()) return constant_at(node, si_unit);
-  return constant_at(node.at("value"), si_unit);
-}
-std::unique_ptr<Signal> steps(const ConfigNode& node, std::string_view si_unit,
-                              const SignalContext&) {
-  return read_steps(node, si_unit);
-}
-std::unique_ptr<Signal> ramp(const ConfigNode& node, std::string_view si_unit,
-                             const SignalContext&) {
-  return read_ramp(node, si_unit);
-}
-std::unique_ptr<Signal> piecewise_linear(const ConfigNode& node, std::string_view si_unit,
-                                         const SignalContext&) {
-  return read_piecewise_linear(node, si_unit);
-}
-std::unique_ptr<Signal> staircase(const ConfigNode& node, std::string_view si_unit,
-                                  const SignalContext&) {
-  return read_staircase(node, si_unit);
-}
-std::unique_ptr<Signal> sine(const ConfigNode& node, std::string_view si_unit,
-                             const SignalContext& context) {
-  return read_sine(node, si_unit, context);
-}
-std::unique_ptr<Signal> multisine(const ConfigNode& node, std::string_view si_unit,
-                                  const SignalContext& context) {
-  return read_multisine(node, si_unit, context);
-}
-std::unique_ptr<Signal> random_steps(const ConfigNode& node, std::string_view si_unit,
-                                     const SignalContext& context) {
-  return read_random_steps(node, si_unit, context);
-}
-std::unique_ptr<Signal> log_sweep(const ConfigNode& node, std::string_view si_unit,
-                                  const SignalContext& context) {
-  return read_log_sweep(node, si_unit, context);
-}
-std::unique_ptr<Signal> sequence(const ConfigNode& node, std::string_view si_unit,
-                                 const SignalContext& context) {
-  return read_sequence(node, si_unit, context);
-}
-std::unique_ptr<Signal> periodic(const ConfigNode& node, std::string_view si_unit,
-                                 const SignalContext& context) {
-  return read_periodic(node, si_unit, context);
-}
-std::unique_ptr<Signal> stepped_sine_sweep(const ConfigNode& node, std::string_view si_unit,
-                                           const SignalContext&) {
-  return read_stepped_sine_sweep(node, si_unit);
-}
-std::unique_ptr<Signal> step_sequence(const ConfigNode& node, std::string_view si_unit,
-                                      const SignalContext&) {
-  return read_step_sequence(node, si_unit);
 }
 
 }  // namespace signal_readers

@@ -288,9 +288,15 @@ Evaluation System::evaluation(const Context& context, double time, double signal
                     context.prescribed_.data()};
 }
 
-void System::prepare(Context& context) const {
-  if (context.system_ != this) throw std::logic_error("the context belongs to another system");
-  // Signals whose parameters the context changed are rebuilt with the new values.
+RunSetup System::setup_of(const Context& context, std::size_t component) const {
+  return {std::span<const double>(context.parameters_)
+              .subspan(static_cast<std::size_t>(components_[component]->parameter_offset_),
+                       static_cast<std::size_t>(parameter_counts_[component])),
+          context};
+}
+
+void System::rebuild_signals(Context& context) const {
+  // Signals whose parameters the context changed are made again with the new values.
   for (std::size_t s = 0; s < signal_slots_.size(); ++s) {
     const SignalSlot& slot = signal_slots_[s];
     const auto first = static_cast<std::size_t>(slot.first_parameter);
@@ -309,30 +315,29 @@ void System::prepare(Context& context) const {
     }
     context.prescribed_[s] = context.rebuilt_signals_[s].get();
   }
+}
+
+void System::check_run_parameters(const Context& context) const {
+  for (std::size_t c = 0; c < components_.size(); ++c) {
+    if (std::string problem = components_[c]->check_parameters(setup_of(context, c));
+        !problem.empty())
+      throw ParameterError(named(*components_[c]), problem);
+  }
+  for (const auto& constraint : constraints_) {
+    if (std::string problem = constraint(context); !problem.empty())
+      throw ParameterError("", problem);
+  }
+}
+
+void System::prepare(Context& context) const {
+  if (context.system_ != this) throw std::logic_error("the context belongs to another system");
+  rebuild_signals(context);
   for (const auto& derivation : derivations_)
     context.parameters_[static_cast<std::size_t>(derivation.parameter)] = derivation.rule(context);
-  if (context.parameters_changed()) {
-    for (std::size_t c = 0; c < components_.size(); ++c) {
-      const Component& component = *components_[c];
-      const RunSetup setup{std::span<const double>(context.parameters_)
-                               .subspan(static_cast<std::size_t>(component.parameter_offset_),
-                                        static_cast<std::size_t>(parameter_counts_[c])),
-                           context};
-      if (std::string problem = component.check_parameters(setup); !problem.empty())
-        throw ParameterError(named(component), problem);
-    }
-    for (const auto& constraint : constraints_) {
-      if (std::string problem = constraint(context); !problem.empty())
-        throw ParameterError("", problem);
-    }
-  }
+  // The values the model was built with passed these checks when it was read.
+  if (context.parameters_changed()) check_run_parameters(context);
   for (std::size_t c = 0; c < components_.size(); ++c) {
-    const Component& component = *components_[c];
-    const RunSetup setup{std::span<const double>(context.parameters_)
-                             .subspan(static_cast<std::size_t>(component.parameter_offset_),
-                                      static_cast<std::size_t>(parameter_counts_[c])),
-                         context};
-    context.run_states_[c] = component.create_run_state(setup);
+    context.run_states_[c] = components_[c]->create_run_state(setup_of(context, c));
     context.run_state_pointers_[c] = context.run_states_[c].get();
   }
 }

@@ -138,6 +138,9 @@ class System {
   void wire(const SystemBuilder& builder);
   void order_by_feedthrough();
   void collect_parameters(const SystemBuilder& builder);
+  RunSetup setup_of(const Context& context, std::size_t component) const;
+  void rebuild_signals(Context& context) const;
+  void check_run_parameters(const Context& context) const;
 
   std::vector<std::unique_ptr<Component>> components_;
   std::vector<std::vector<InputDeclaration>> inputs_;  // per component, as declared

@@ -79,14 +79,6 @@ TEST_CASE("A parameter of a named instance is set by its instance path, with uni
 }
 
 TEST_CASE("Links between instances are explicit, with the only candidate as default") {
-  auto error_of = [](const std::string& yaml) {
-    try {
-      scenario_from_text(yaml);
-    } catch (const ConfigError& error) {
-      return std::string(error.what());
-    }
-    return std::string("no error");
-  };
   std::string text;
   {
     std::ifstream file(source_path("configs/composition/two_muscles.yaml"));
@@ -94,16 +86,16 @@ TEST_CASE("Links between instances are explicit, with the only candidate as defa
     buffer << file.rdbuf();
     text = buffer.str();
   }
-  CHECK(error_of(text) == "no error");
-  CHECK_THAT(error_of(replaced(text, "  muscles: [m1, m2]\n", "")),
+  CHECK(config_error(text) == "no error");
+  CHECK_THAT(config_error(replaced(text, "  muscles: [m1, m2]\n", "")),
              Catch::Contains("load: the scenario has several muscles; say which with 'muscle: "
                              "<name>'"));
-  CHECK_THAT(error_of(replaced(text, "muscle: m2", "muscle: m3")),
+  CHECK_THAT(config_error(replaced(text, "muscle: m2", "muscle: m3")),
              Catch::Contains("drives.d2.muscle: no muscle named 'm3' (did you mean 'm1'?); the "
                              "scenario's: m1, m2"));
-  CHECK_THAT(error_of(replaced(text, "  d2:", "  m1:")),
+  CHECK_THAT(config_error(replaced(text, "  d2:", "  m1:")),
              Catch::Contains("two instances are named 'm1'; names must be unique"));
-  CHECK_THAT(error_of(replaced(text, "  m2:\n", "  m.2:\n")),
+  CHECK_THAT(config_error(replaced(text, "  m2:\n", "  m.2:\n")),
              Catch::Contains("expected an instance name without dots"));
 }
 
@@ -209,27 +201,20 @@ load: {type: deflection, deflection: 20 mm}
 }
 
 TEST_CASE("Effects are checked against the muscle they attach to") {
-  auto error_of = [](const std::string& yaml) {
-    try {
-      scenario_from_text(yaml);
-    } catch (const ConfigError& error) {
-      return std::string(error.what());
-    }
-    return std::string("no error");
-  };
   const std::string load = "load: {type: deflection, deflection: 20 mm}\n";
-  CHECK_THAT(error_of(passive_muscle("  effects: [{type: free_convection, conductance: 0.01 W/K, "
-                                     "reference_difference: 50 K}]\n",
-                                     load)),
-             Catch::Contains("free convection needs a heat balance to attach to"));
-  CHECK_THAT(error_of(passive_muscle("  effects: [{type: maxwell_brunch}]\n", load)),
+  CHECK_THAT(
+      config_error(passive_muscle("  effects: [{type: free_convection, conductance: 0.01 W/K, "
+                                  "reference_difference: 50 K}]\n",
+                                  load)),
+      Catch::Contains("free convection needs a heat balance to attach to"));
+  CHECK_THAT(config_error(passive_muscle("  effects: [{type: maxwell_brunch}]\n", load)),
              Catch::Contains("muscle.effects[0].type: expected one of maxwell_branch, "
                              "free_convection, got 'maxwell_brunch' (did you mean "
                              "'maxwell_branch'?)"));
-  CHECK_THAT(error_of(passive_muscle(
+  CHECK_THAT(config_error(passive_muscle(
                  "  effects: [{type: maxwell_branch, stiffness: 1 N/m, damping: 1 N*s/m}, "
                  "{type: maxwell_branch, stiffness: 2 N/m, damping: 1 N*s/m}]\n",
                  load)),
              Catch::Contains("two effects of muscle are named 'maxwell_branch'"));
-  CHECK(error_of(passive_muscle(kBranch, load)) == "no error");
+  CHECK(config_error(passive_muscle(kBranch, load)) == "no error");
 }

@@ -32,6 +32,15 @@ Scenario scenario_from_text(const std::string& yaml, const std::vector<std::stri
   return load_scenario_text(yaml, "test.yaml", overrides, shared_units());
 }
 
+std::string config_error(const std::string& yaml, const std::vector<std::string>& overrides) {
+  try {
+    scenario_from_text(yaml, overrides);
+  } catch (const ConfigError& error) {
+    return error.what();
+  }
+  return "no error";
+}
+
 double allowed(double rtol, double scale) {
   return 50.0 * rtol * scale;
 }

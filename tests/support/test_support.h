@@ -26,6 +26,8 @@ std::shared_ptr<const UnitSystem> shared_units();
 Scenario scenario_from_text(const std::string& yaml,
                             const std::vector<std::string>& overrides = {});
 Trace simulate(const Scenario& scenario);
+// The ConfigError message building `yaml` gives, or "no error".
+std::string config_error(const std::string& yaml, const std::vector<std::string>& overrides = {});
 Trace simulate(const std::string& yaml, const std::vector<std::string>& overrides = {});
 
 // A small physical-form muscle: C = 0.5 J/K, hA = 0.05 W/K, phi_T = 2 mN/K, SLS with
