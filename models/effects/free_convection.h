@@ -12,9 +12,10 @@ namespace tcpmsim {
 // (Nu ~ Ra^(1/4), the laminar range of Churchill and Chu's correlations), so the loss is
 //     Q = G dT_ref (dT / dT_ref)^(5/4),   dT = T - T_amb,
 // stated by its conductance G [W/K] at a reference difference dT_ref (Q = G dT there). Below
-// ambient the same law cools in reverse, Q = -G dT_ref (|dT| / dT_ref)^(5/4). This is the
-// "nonlinear cooling" the thesis names as unmodelled; beside the node's linear conductance it
-// makes the steady temperature rise less than linearly with power.
+// ambient the same law cools in reverse, Q = -G dT_ref (|dT| / dT_ref)^(5/4). Beside the node's
+// linear conductance it makes the steady temperature rise less than linearly with power: a
+// candidate for the cooling the thesis found mismatched at low power (physics.md section 3),
+// which the measured data must confirm or refute.
 struct FreeConvectionParameters {
   double conductance = 0.0;           // G [W/K] at the reference difference
   double reference_difference = 0.0;  // dT_ref [K]
