@@ -39,6 +39,8 @@ void ScenarioBuilder::declare_instances(const ConfigNode& root) {
     check_name(located, name);
     if (!names.insert(name).second)
       located.fail("two instances are named '" + name + "'; names must be unique");
+    by_name_[name] = instances_.size();
+    by_category_[category.name].push_back(instances_.size());
     instances_.push_back({category.name, name, node, &kinds_.select(category.name, node)});
   };
   for (const Category& category : kinds_.categories()) {
@@ -64,17 +66,15 @@ std::unique_ptr<Signal> ScenarioBuilder::signal(const ConfigNode& node,
 std::vector<const InstanceDeclaration*> ScenarioBuilder::instances(
     std::string_view category) const {
   std::vector<const InstanceDeclaration*> found;
-  for (const auto& instance : instances_) {
-    if (instance.category == category) found.push_back(&instance);
+  if (const auto indices = by_category_.find(category); indices != by_category_.end()) {
+    for (const std::size_t index : indices->second) found.push_back(&instances_[index]);
   }
   return found;
 }
 
 const InstanceDeclaration* ScenarioBuilder::instance(std::string_view name) const {
-  for (const auto& instance : instances_) {
-    if (instance.name == name) return &instance;
-  }
-  return nullptr;
+  const auto found = by_name_.find(std::string(name));
+  return found == by_name_.end() ? nullptr : &instances_[found->second];
 }
 
 const InstanceDeclaration& ScenarioBuilder::named(const ConfigNode& name_node,
@@ -103,8 +103,10 @@ const InstanceDeclaration& ScenarioBuilder::linked(const ConfigNode& node, std::
     return found;
   }
   node.describe_key(key, "name of " + article(what), "the only " + what);
+  const auto indices = by_category_.find(category);
+  const std::size_t count = indices == by_category_.end() ? 0 : indices->second.size();
+  if (count == 1) return instances_[indices->second.front()];
   const auto candidates = instances(category);
-  if (candidates.size() == 1) return *candidates.front();
   if (candidates.empty())
     node.fail("needs a " + std::string(category) + ", and the scenario has none");
   node.fail("the scenario has several " + kinds_.category(category).plural + "; say which with '" +

@@ -83,6 +83,8 @@ class ScenarioBuilder {
   ScenarioSettings settings_;
   SystemBuilder system_;
   std::vector<InstanceDeclaration> instances_;
+  std::map<std::string, std::size_t> by_name_;                                // name -> instance
+  std::map<std::string, std::vector<std::size_t>, std::less<>> by_category_;  // -> instances
   std::map<std::string, std::any> facts_;
   std::vector<std::function<void()>> checks_;
 };

@@ -116,6 +116,7 @@ void System::assign_slices() {
       for (auto& parameter : declared.signal->parameters())
         parameters_.push_back({std::move(parameter), &component, index, {}});
       slot.parameter_count = static_cast<int>(parameters_.size()) - slot.first_parameter;
+      slot_by_name_[slot.group + "." + slot.name] = index;
       signal_slots_.push_back(std::move(slot));
     }
   }
@@ -266,11 +267,12 @@ std::optional<int> System::parameter_index(std::string_view path) const {
 }
 
 std::optional<int> System::signal_slot(std::string_view group, std::string_view name) const {
-  for (std::size_t s = 0; s < signal_slots_.size(); ++s) {
-    if (signal_slots_[s].group == group && signal_slots_[s].name == name)
-      return static_cast<int>(s);
-  }
-  return std::nullopt;
+  std::string key(group);
+  key += '.';
+  key += name;
+  const auto found = slot_by_name_.find(key);
+  if (found == slot_by_name_.end()) return std::nullopt;
+  return found->second;
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -158,6 +158,7 @@ class System {
   std::vector<ParameterInfo> parameters_;
   std::unordered_map<std::string, int> parameter_by_path_;
   std::vector<SignalSlot> signal_slots_;
+  std::unordered_map<std::string, int> slot_by_name_;  // "group.name" -> slot
   struct Derivation {
     int parameter;
     ParameterRule rule;

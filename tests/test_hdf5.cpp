@@ -142,3 +142,21 @@ TEST_CASE("An interrupted recording leaves no file behind") {
   CHECK_FALSE(std::filesystem::exists(partial_path(path)));
   CHECK_FALSE(std::filesystem::exists(path));
 }
+
+TEST_CASE("An attached effect is recorded inside its muscle's group, named instances by name") {
+  Scenario scenario = scenario_from_text(
+      replaced(physical_muscle_yaml(), "  resistance: 10 ohm\n",
+               "  resistance: 10 ohm\n  effects: [{type: maxwell_branch, name: slow, stiffness: 5 "
+               "N/m, damping: 50 N*s/m}]\n"),
+      {"scenario.duration=5 s",
+       "load.deflection={type: steps, initial: 20 mm, times: [1 s], "
+       "values: [25 mm]}"});
+  const std::string path = temporary_path("effect.h5");
+  REQUIRE(run_scenario(scenario, path).succeeded);
+  const Trace expected = simulate(scenario);
+  const H5::H5File file(path, H5F_ACC_RDONLY);
+  CHECK(text_attribute(file.openDataSet("/muscle/slow/force"), "units") == "N");
+  CHECK(read_series(file, "/muscle/slow/force") == expected["muscle/slow/force"]);
+  CHECK(expected["muscle/slow/force"].back() > 0.0);         // still relaxing 4 s after the step
+  CHECK_THROWS(file.openDataSet("/muscle/slow/stiffness"));  // a port, not recorded
+}

@@ -8,6 +8,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <unistd.h>
+
 #include "analysis/coil_fit_command.h"
 #include "analysis/control_tasks_command.h"
 #include "analysis/spring_forces_command.h"
@@ -60,8 +62,10 @@ std::string differences(const RecordDigest& expected, const RecordDigest& actual
   return report;
 }
 
+// Named by process too: two builds' suites may run at once.
 std::string temporary(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("tcpmsim_reference_" + name + ".h5")).string();
+  const std::string file = "tcpmsim_reference_" + std::to_string(::getpid()) + "_" + name + ".h5";
+  return (std::filesystem::temp_directory_path() / file).string();
 }
 
 void check_record(const std::map<std::string, RecordDigest>& reference, const std::string& name,
