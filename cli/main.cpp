@@ -137,6 +137,9 @@ int guarded(int (*command)(const Options&), const Options& options) {
   } catch (const tcpmsim::UnitError& error) {
     std::cerr << "tcpmsim: " << error.what() << "\n";
     return kConfigError;
+  } catch (const tcpmsim::ParameterError& error) {
+    std::cerr << "tcpmsim: error: " << error.what() << "\n";
+    return kConfigError;
   } catch (const std::runtime_error& error) {
     std::cerr << "tcpmsim: " << error.what() << "\n";
     return kOutputError;

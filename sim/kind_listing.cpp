@@ -1,7 +1,6 @@
 #include "sim/kind_listing.h"
 
 #include <map>
-#include <regex>
 #include <sstream>
 
 #include "sim/config/config_node.h"
@@ -17,9 +16,14 @@ bool under(const std::string& path, const std::string& root) {
 }
 
 // "values[3]" -> "values[]": one line for all elements.
-std::string generic(std::string key) {
-  static const std::regex index("\\[[0-9]+\\]");
-  return std::regex_replace(key, index, "[]");
+std::string generic(const std::string& key) {
+  std::string result;
+  for (std::size_t i = 0; i < key.size(); ++i) {
+    result += key[i];
+    if (key[i] != '[') continue;
+    while (i + 1 < key.size() && key[i + 1] >= '0' && key[i + 1] <= '9') ++i;
+  }
+  return result;
 }
 
 std::string row(const KindKey& key, bool markdown) {
