@@ -94,7 +94,8 @@ void SlsMechanics::compute_outputs(const Evaluation& evaluation) const {
   set_output(evaluation, kDeflectionOutput, x);
   set_output(evaluation, kElasticForce, elastic);
   set_output(evaluation, kForceOutput, force);
-  set_output(evaluation, kRestDeflection, rest_deflection(evaluation));
+  // An imposed deflection is its own rest deflection; only an imposed force needs solving.
+  set_output(evaluation, kRestDeflection, deflection_imposed() ? x : rest_deflection(evaluation));
 }
 
 void SlsMechanics::compute_derivatives(const Evaluation& evaluation, double* derivatives) const {

@@ -49,18 +49,6 @@ const Signal& Component::signal(const Context& context, int index) const {
   return context.signal(signal_offset_ + index);
 }
 
-int Component::source_count(int input) const {
-  return fan_in_count_[static_cast<std::size_t>(input)];
-}
-
-double Component::input_sum(const Evaluation& evaluation, int index) const {
-  const int count = fan_in_count_[static_cast<std::size_t>(index)];
-  if (count == 0) return 0.0;
-  double sum = input(evaluation, index, 0);
-  for (int k = 1; k < count; ++k) sum += input(evaluation, index, k);
-  return sum;
-}
-
 namespace {
 std::vector<int> all_indices(std::size_t count) {
   std::vector<int> indices(count);

@@ -192,7 +192,7 @@ class Component {
 
   // The number of outputs wired to an input (known after assembly): 0 or 1 for an optional
   // input, any number for a fan-in.
-  int source_count(int input) const;
+  int source_count(int input) const { return fan_in_count_[static_cast<std::size_t>(input)]; }
 
  protected:
   double state(const Evaluation& evaluation, int index) const {
@@ -208,7 +208,13 @@ class Component {
         fan_in_begin_[static_cast<std::size_t>(index)] + k)]];
   }
   // The sum of a fan-in input's sources, in connection order (0 with none).
-  double input_sum(const Evaluation& evaluation, int index) const;
+  double input_sum(const Evaluation& evaluation, int index) const {
+    const int count = source_count(index);
+    if (count == 0) return 0.0;
+    double sum = input(evaluation, index, 0);
+    for (int k = 1; k < count; ++k) sum += input(evaluation, index, k);
+    return sum;
+  }
   double parameter(const Evaluation& evaluation, int index) const {
     return evaluation.parameters[parameter_offset_ + index];
   }
