@@ -59,9 +59,14 @@ int validate(const Options& options) {
     std::cout << "  output /" << channel.group << "/" << channel.name << " [" << channel.unit
               << "]\n";
   }
-  for (const auto& parameter : scenario.system->parameters()) {
+  // The values a run takes: those --set gave the context, and the derived ones from them.
+  tcpmsim::Context context = scenario.make_context();
+  scenario.system->prepare(context);
+  for (std::size_t index = 0; index < scenario.system->parameters().size(); ++index) {
+    const auto& parameter = scenario.system->parameters()[index];
     const auto& declared = parameter.declaration;
-    std::cout << "  parameter " << declared.path << " = " << declared.value
+    std::cout << "  parameter " << declared.path << " = "
+              << context.parameter(static_cast<int>(index))
               << (declared.unit == "1" ? "" : " " + declared.unit);
     if (!parameter.derived_from.empty())
       std::cout << " (derived: " << parameter.derived_from << ")";

@@ -1,9 +1,6 @@
 #include "sim/scenario.h"
 
-#include <fstream>
-#include <map>
-#include <set>
-#include <sstream>
+#include <algorithm>
 
 namespace tcpmsim {
 
@@ -83,62 +80,23 @@ SolverSettings read_solver(const ConfigNode& root, const System& system) {
   return settings;
 }
 
-// An override: its scenario path (an instance's name written out as its section's path, as
-// the document applies it) and its text as given.
-struct Override {
-  std::string path;
-  std::string text;
-  std::string value;
-};
-
-std::vector<Override> resolve_overrides(const std::string& text,
-                                        const std::vector<std::string>& overrides) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception&) {
-    // Broken YAML: the document reports it with its position.
-  }
-  std::vector<Override> resolved;
-  for (const auto& assignment : overrides) {
-    Override entry{"", assignment, ""};
-    const auto equals = assignment.find('=');
-    if (equals != std::string::npos) {
-      std::string path = assignment.substr(0, equals);
-      path.erase(0, path.find_first_not_of(" \t"));
-      path.erase(path.find_last_not_of(" \t") + 1);
-      entry.path = expand_instance_path(root, path);
-      entry.value = assignment.substr(equals + 1);
-    }
-    resolved.push_back(entry);
-  }
-  return resolved;
-}
-
-std::vector<std::string> texts(const std::vector<Override>& overrides) {
-  std::vector<std::string> result;
-  for (const auto& entry : overrides) result.push_back(entry.text);
-  return result;
-}
-
-// The parameter an override sets, if it sets one of `system` by a single value: its index.
-std::optional<int> parameter_of(const Override& entry, const System& system,
+// The parameter an assignment sets, if it sets one of `system` by a single value: its index.
+std::optional<int> parameter_of(const Assignment& assignment, const System& system,
                                 const ConfigNode& document) {
-  if (entry.path.empty()) return std::nullopt;
-  const YAML::Node value = [&] {
-    try {
-      return YAML::Load(entry.value);
-    } catch (const YAML::Exception&) {
-      return YAML::Node();
-    }
-  }();
-  if (!value.IsScalar()) return std::nullopt;
+  if (!assignment.value.IsScalar()) return std::nullopt;
   // The parameter path of a scenario path: as the document names its instances.
-  const std::string path = document.parameter_path_of(entry.path);
-  const auto index = system.parameter_index(path);
+  const auto index = system.parameter_index(document.parameter_path_of(assignment.path));
   if (!index || !system.parameters()[static_cast<std::size_t>(*index)].derived_from.empty())
     return std::nullopt;
   return index;
+}
+
+// The sections whose keys are instances' names, where a --set path may start from a name.
+std::vector<std::string> instance_sections(const KindRegistry& kinds) {
+  std::vector<std::string> sections;
+  for (const Category& category : kinds.categories())
+    if (category.top_level()) sections.push_back(category.plural);
+  return sections;
 }
 
 }  // namespace
@@ -171,35 +129,35 @@ Scenario load_scenario_text(const std::string& text, const std::string& name,
     scenario.source = name;
     return scenario;
   }
-  std::vector<Override> resolved = resolve_overrides(text, overrides);
+  const std::vector<std::string> sections = instance_sections(kinds);
   // Every override through the document: it checks them all and gives the resolved scenario.
-  const ConfigNode everything = ConfigNode::load_text(text, name, texts(resolved), units);
+  const ConfigNode everything = ConfigNode::load_text(text, name, overrides, units, sections);
   const Scenario complete = build_scenario(everything, kinds);
+  const std::vector<Assignment>& assignments = everything.assignments();
   // Those that set a parameter go to the run context instead, as long as the model built
   // without them still has that parameter.
-  std::vector<bool> to_context(resolved.size());
-  bool any = false;
-  for (std::size_t k = 0; k < resolved.size(); ++k) {
-    to_context[k] = parameter_of(resolved[k], *complete.system, everything).has_value();
-    any = any || to_context[k];
+  std::vector<std::optional<int>> complete_index(assignments.size());
+  std::vector<bool> to_context(assignments.size());
+  for (std::size_t k = 0; k < assignments.size(); ++k) {
+    complete_index[k] = parameter_of(assignments[k], *complete.system, everything);
+    to_context[k] = complete_index[k].has_value();
   }
-  if (!any) {
+  if (std::find(to_context.begin(), to_context.end(), true) == to_context.end()) {
     Scenario scenario = complete;
     scenario.source = name;
     return scenario;
   }
   while (true) {
-    std::vector<Override> structural;
-    for (std::size_t k = 0; k < resolved.size(); ++k) {
-      if (!to_context[k]) structural.push_back(resolved[k]);
+    std::vector<std::string> structural;
+    for (std::size_t k = 0; k < assignments.size(); ++k) {
+      if (!to_context[k]) structural.push_back(overrides[k]);
     }
-    const ConfigNode document = ConfigNode::load_text(text, name, texts(structural), units);
+    const ConfigNode document = ConfigNode::load_text(text, name, structural, units, sections);
     Scenario scenario = build_scenario(document, kinds);
     bool consistent = true;
-    for (std::size_t k = 0; k < resolved.size(); ++k) {
+    for (std::size_t k = 0; k < assignments.size(); ++k) {
       if (!to_context[k]) continue;
-      const auto index = parameter_of(resolved[k], *scenario.system, document);
-      const auto full = parameter_of(resolved[k], *complete.system, everything);
+      const auto index = parameter_of(assignments[k], *scenario.system, document);
       if (!index) {
         to_context[k] = false;
         consistent = false;
@@ -207,7 +165,8 @@ Scenario load_scenario_text(const std::string& text, const std::string& name,
       }
       scenario.parameter_settings.emplace_back(
           scenario.system->parameters()[static_cast<std::size_t>(*index)].declaration.path,
-          complete.system->parameters()[static_cast<std::size_t>(*full)].declaration.value);
+          complete.system->parameters()[static_cast<std::size_t>(*complete_index[k])]
+              .declaration.value);
     }
     if (!consistent) continue;
     scenario.resolved_yaml = complete.resolved_yaml;
@@ -228,11 +187,7 @@ Scenario load_scenario_text(const std::string& text, const std::string& name,
 
 Scenario load_scenario(const std::string& file, const std::vector<std::string>& overrides,
                        std::shared_ptr<const UnitSystem> units, const KindRegistry& kinds) {
-  std::ifstream stream(file);
-  if (!stream) throw ConfigError({file, 0, 0, {}}, "", "cannot open the file for reading");
-  std::stringstream buffer;
-  buffer << stream.rdbuf();
-  return load_scenario_text(buffer.str(), file, overrides, std::move(units), kinds);
+  return load_scenario_text(read_text_file(file), file, overrides, std::move(units), kinds);
 }
 
 Context Scenario::make_context() const {

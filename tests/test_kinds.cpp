@@ -2,6 +2,8 @@
 // one the code produces, and a new kind needs nothing from the engine but registration.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -13,25 +15,76 @@
 using namespace tcpmsim;
 using namespace tcpmsim::testing;
 
+namespace {
+
+// The section at a dotted path such as "drive.power" or "muscle.effects[0]".
+ConfigNode section_at(const ConfigNode& root, const std::string& path) {
+  ConfigNode node = root;
+  std::size_t begin = 0;
+  while (begin < path.size()) {
+    const std::size_t end = std::min(path.find('.', begin), path.size());
+    std::string key = path.substr(begin, end - begin);
+    const std::size_t bracket = key.find('[');
+    node = node.at(key.substr(0, bracket));
+    if (bracket != std::string::npos)
+      node = node.elements().at(std::stoul(key.substr(bracket + 1)));
+    begin = end + 1;
+  }
+  return node;
+}
+
+// The kind a section names: its selector, the category's scalar kind for a bare value, or the
+// category's default kind; a category without a selector has one kind.
+std::string kind_named(const KindRegistry& kinds, const Category& category,
+                       const ConfigNode& section) {
+  if (category.selector.empty()) return kinds.kinds(category.name).front()->name;
+  if (section.is_scalar()) return category.scalar_kind;
+  if (section.has(category.selector)) return section.text(category.selector);
+  return category.default_kind;
+}
+
+// Every channel finite once known (an estimate is NaN, unknown, until its first measurement).
+bool finite_once_known(const Trace& trace) {
+  for (const auto& [name, values] : trace.channels) {
+    const auto known =
+        std::find_if(values.begin(), values.end(), [](double v) { return !std::isnan(v); });
+    if (!std::all_of(known, values.end(), [](double v) { return std::isfinite(v); })) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 TEST_CASE("Every kind of the standard registry builds and runs from its examples") {
   const KindRegistry kinds = standard_kinds();
   int examples = 0;
   for (const Category& category : kinds.categories()) {
     INFO(category.name);
     CHECK_FALSE(kinds.kinds(category.name).empty());
+    if (category.selector.empty()) CHECK(kinds.kinds(category.name).size() == 1);
     for (const Kind* kind : kinds.kinds(category.name)) {
       INFO(kind->name);
       REQUIRE_FALSE(kind->examples.empty());
+      int naming = 0;  // examples whose section names this kind (others show a section it reads)
       for (const auto& example : kind->examples) {
+        INFO(example.node);
+        const ConfigNode root =
+            ConfigNode::load_text(example.text, kind->name + " example", {}, shared_units());
+        naming += kind_named(kinds, category, section_at(root, example.node)) == kind->name;
         const Scenario scenario =
             load_scenario_text(example.text, kind->name + " example", {"scenario.duration=0.01 s"},
                                shared_units(), kinds);
+        Context context = scenario.make_context();
+        double* state = context.state().data();
+        scenario.system->initialize(context, 0.0, state);
+        scenario.system->at_breakpoint(context, 0.0, 0.0, state);
+        CHECK(scenario.system->check_component_contracts(context, 0.0, state) == "");
         const Trace trace = simulate(scenario);
         CHECK(trace.time.back() == 0.01);
-        // The example names the kind it shows.
-        CHECK_FALSE(kind_keys(kinds, *kind, shared_units()).empty());
+        CHECK(finite_once_known(trace));
         ++examples;
       }
+      CHECK(naming >= 1);
     }
   }
   CHECK(examples > 25);

@@ -47,8 +47,8 @@ struct ConfigDocument {
   std::string file;
   YAML::Node root;
   YAML::Node resolved;
-  std::vector<std::pair<std::string, std::string>> overrides;  // key path, "--set" text
-  std::map<std::string, std::set<std::string>> known_keys;     // mapping path -> asked keys
+  std::vector<Assignment> overrides;
+  std::map<std::string, std::set<std::string>> known_keys;  // mapping path -> asked keys
   std::set<std::string> consumed;
   std::shared_ptr<const UnitSystem> units;
   std::map<std::string, std::string> parameter_prefixes;  // scenario path -> parameter path
@@ -175,23 +175,34 @@ void assign_at(YAML::Node node, const std::vector<std::string>& parts, std::size
 
 }  // namespace
 
-std::string expand_instance_path(const YAML::Node& root, const std::string& path) {
+std::string expand_instance_path(const YAML::Node& root, const std::string& path,
+                                 const std::vector<std::string>& instance_sections) {
   const std::string first = path.substr(0, path.find_first_of(".["));
   if (first.empty() || !root.IsMap() || root[first]) return path;
   std::string section;
-  for (const auto& entry : root) {
-    if (!entry.second.IsMap() || !entry.second[first]) continue;
+  for (const auto& candidate : instance_sections) {
+    const YAML::Node instances = root[candidate];
+    if (!instances || !instances.IsMap() || !instances[first]) continue;
     if (!section.empty()) return path;  // two sections name it: leave the path as written
-    section = entry.first.as<std::string>();
+    section = candidate;
   }
   return section.empty() ? path : section + "." + path;
+}
+
+std::string read_text_file(const std::string& file) {
+  std::ifstream stream(file);
+  if (!stream) throw ConfigError({file, 0, 0, {}}, "", "cannot open the file for reading");
+  std::stringstream buffer;
+  buffer << stream.rdbuf();
+  return buffer.str();
 }
 
 namespace {
 
 std::shared_ptr<ConfigDocument> parse_document(const std::string& text, const std::string& name,
                                                const std::vector<std::string>& overrides,
-                                               std::shared_ptr<const UnitSystem> units) {
+                                               std::shared_ptr<const UnitSystem> units,
+                                               const std::vector<std::string>& instance_sections) {
   auto document = std::make_shared<ConfigDocument>();
   document->file = name;
   document->units = std::move(units);
@@ -216,7 +227,7 @@ std::shared_ptr<ConfigDocument> parse_document(const std::string& text, const st
       throw ConfigError(origin, "", "expected --set key.path=value");
     }
     const std::string path =
-        expand_instance_path(document->root, trim(assignment.substr(0, equals)));
+        expand_instance_path(document->root, trim(assignment.substr(0, equals)), instance_sections);
     YAML::Node value;
     try {
       value = YAML::Load(assignment.substr(equals + 1));
@@ -224,7 +235,7 @@ std::shared_ptr<ConfigDocument> parse_document(const std::string& text, const st
       throw ConfigError(origin, path, "the value is not valid YAML: " + error.msg);
     }
     assign_at(document->root, split_path(path), 0, value, origin, path);
-    document->overrides.emplace_back(path, assignment);
+    document->overrides.push_back({path, assignment, value});
   }
   document->resolved = YAML::Clone(document->root);
   return document;
@@ -234,17 +245,20 @@ std::shared_ptr<ConfigDocument> parse_document(const std::string& text, const st
 
 ConfigNode ConfigNode::load_text(const std::string& text, const std::string& name,
                                  const std::vector<std::string>& overrides,
-                                 std::shared_ptr<const UnitSystem> units) {
-  return ConfigNode(parse_document(text, name, overrides, std::move(units)), {}, "");
+                                 std::shared_ptr<const UnitSystem> units,
+                                 const std::vector<std::string>& instance_sections) {
+  return ConfigNode(parse_document(text, name, overrides, std::move(units), instance_sections), {},
+                    "");
 }
 
 ConfigNode ConfigNode::load_file(const std::string& file, const std::vector<std::string>& overrides,
-                                 std::shared_ptr<const UnitSystem> units) {
-  std::ifstream stream(file);
-  if (!stream) throw ConfigError({file, 0, 0, {}}, "", "cannot open the file for reading");
-  std::stringstream buffer;
-  buffer << stream.rdbuf();
-  return load_text(buffer.str(), file, overrides, std::move(units));
+                                 std::shared_ptr<const UnitSystem> units,
+                                 const std::vector<std::string>& instance_sections) {
+  return load_text(read_text_file(file), file, overrides, std::move(units), instance_sections);
+}
+
+const std::vector<Assignment>& ConfigNode::assignments() const {
+  return document_->overrides;
 }
 
 ConfigNode::ConfigNode(std::shared_ptr<ConfigDocument> document, YAML::Node node, std::string path)
@@ -265,9 +279,9 @@ const UnitSystem& ConfigNode::units() const {
 }
 
 SourceLocation ConfigNode::location() const {
-  for (const auto& [overridden, text] : document_->overrides) {
-    if (is_prefix_path(overridden, path_)) {
-      return {document_->file, 0, 0, "command line (--set " + text + ")"};
+  for (const auto& assignment : document_->overrides) {
+    if (is_prefix_path(assignment.path, path_)) {
+      return {document_->file, 0, 0, "command line (--set " + assignment.text + ")"};
     }
   }
   const auto mark = node_.Mark();
@@ -597,9 +611,9 @@ void find_unknown(const ConfigDocument& document, const YAML::Node& node, const 
         }
         SourceLocation location{
             document.file, entry.first.Mark().line + 1, entry.first.Mark().column + 1, {}};
-        for (const auto& [overridden, text] : document.overrides) {
-          if (is_prefix_path(overridden, child))
-            location = {document.file, 0, 0, "command line (--set " + text + ")"};
+        for (const auto& assignment : document.overrides) {
+          if (is_prefix_path(assignment.path, child))
+            location = {document.file, 0, 0, "command line (--set " + assignment.text + ")"};
         }
         throw ConfigError(location, child, problem);
       }

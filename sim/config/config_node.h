@@ -29,17 +29,32 @@ struct KeyRead {
   bool part = false;      // a section another kind reads (a signal, an effect)
 };
 
+// A --set assignment as the document applied it: its key path written out in full (an
+// instance's name with its section, "muscles.m2.mechanics.k2"), its text as typed, its value.
+struct Assignment {
+  std::string path;
+  std::string text;
+  YAML::Node value;
+};
+
 // A node of a scenario file, read strictly: every value is located (file:line:col or the
 // --set that produced it), typed, unit-converted to SI and range-checked; every key the
 // program does not ask for is reported as unknown, with a suggestion.
 class ConfigNode {
  public:
-  // `overrides` are "key.path=value" strings (the CLI's --set); values are YAML.
+  // `overrides` are "key.path=value" strings (the CLI's --set); values are YAML. A path may
+  // start with an instance's name in one of `instance_sections` (the plural sections, whose
+  // keys are names): "m2.mechanics.k2" for "muscles.m2.mechanics.k2".
   static ConfigNode load_file(const std::string& file, const std::vector<std::string>& overrides,
-                              std::shared_ptr<const UnitSystem> units);
+                              std::shared_ptr<const UnitSystem> units,
+                              const std::vector<std::string>& instance_sections = {});
   static ConfigNode load_text(const std::string& text, const std::string& name,
                               const std::vector<std::string>& overrides,
-                              std::shared_ptr<const UnitSystem> units);
+                              std::shared_ptr<const UnitSystem> units,
+                              const std::vector<std::string>& instance_sections = {});
+
+  // The --set assignments, in the order given.
+  const std::vector<Assignment>& assignments() const;
 
   const std::string& path() const { return path_; }
   // The path of this node, or of its child `key`, as a model parameter: the scenario path with
@@ -129,10 +144,14 @@ class ConfigNode {
   std::string path_;
 };
 
-// A --set path whose first key is not a section of the document but an instance in exactly
-// one section's mapping ("m2.mechanics.k2" with `muscles: {m2: ...}`) written out in full
+// A --set path whose first key is not a section of the document but an instance of exactly
+// one of `instance_sections` ("m2.mechanics.k2" with `muscles: {m2: ...}`) written out in full
 // ("muscles.m2.mechanics.k2"); any other path as it is.
-std::string expand_instance_path(const YAML::Node& root, const std::string& path);
+std::string expand_instance_path(const YAML::Node& root, const std::string& path,
+                                 const std::vector<std::string>& instance_sections);
+
+// The whole of a text file; a ConfigError located at the file if it cannot be read.
+std::string read_text_file(const std::string& file);
 
 // Edit distance, for "did you mean" suggestions.
 std::size_t edit_distance(std::string_view a, std::string_view b);

@@ -51,8 +51,15 @@ contains "$work/out" "parameter m2.mechanics.k2 = 5.4 N/m" "validate lists the p
 expect 3 "a bad value for an instance's parameter is a configuration error" -- "$tcpmsim" validate "$pair" \
   --set "m2.mechanics.k2=-3 mN/mm"
 contains "$work/err" "command line (--set m2.mechanics.k2=-3 mN/mm): error: muscles.m2.mechanics.k2: expected a non-negative value in N/m, got '-3 mN/mm'" "the error names the --set and the key"
-expect 0 "an instance's parameter is set by its path, with units" -- "$tcpmsim" run "$pair" \
+expect 0 "an instance's parameter is set by its path, with units" -- "$tcpmsim" validate "$pair" \
+  --set "m2.mechanics.k2=3 mN/mm"
+contains "$work/out" "parameter m2.mechanics.k2 = 3 N/m" "validate lists the value the run takes"
+contains "$work/out" "parameter m1.mechanics.k2 = 2.7 N/m" "and only that instance's parameter changes"
+expect 0 "a run takes it" -- "$tcpmsim" run "$pair" \
   --set "m2.mechanics.k2=3 mN/mm" --set "scenario.duration=10 s" -o "$work/pair.h5" --quiet
+expect 3 "a key of a section is not an instance's name" -- "$tcpmsim" validate "$config" \
+  --set "duration=1 s"
+contains "$work/err" "error: duration: unknown key 'duration'" "only plural sections' names expand"
 
 expect 0 "run a short scenario" -- "$tcpmsim" run "$config" --set "scenario.duration=5 s" -o "$work/run.h5" --quiet
 [[ -s $work/run.h5 && ! -e $work/run.h5.partial ]] && echo "ok: complete record, no partial" || { echo "FAIL: record"; failures=$((failures + 1)); }
