@@ -4,6 +4,7 @@
 
 #include "models/laws/pwm_supply.h"
 #include "sim/component.h"
+#include "sim/parameter_bindings.h"
 #include "sim/random_stream.h"
 #include "sim/signal_reading.h"
 

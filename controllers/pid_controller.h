@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "sim/config/config_node.h"
-#include "sim/parameters.h"
+#include "sim/parameter_bindings.h"
 #include "sim/sampled_component.h"
 #include "sim/signal_reading.h"
 

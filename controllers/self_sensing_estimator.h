@@ -9,7 +9,7 @@
 #include "models/laws/sls.h"
 #include "models/laws/thermal_force.h"
 #include "sim/config/config_node.h"
-#include "sim/parameters.h"
+#include "sim/parameter_bindings.h"
 #include "sim/sampled_component.h"
 
 namespace tcpmsim {

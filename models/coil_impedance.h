@@ -5,6 +5,7 @@
 #include "models/laws/impedance.h"
 #include "sim/component.h"
 #include "sim/config/config_node.h"
+#include "sim/parameter_bindings.h"
 
 namespace tcpmsim {
 

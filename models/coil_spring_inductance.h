@@ -8,7 +8,7 @@
 #include "models/inductance/maxwell_evaluator.h"
 #include "sim/component.h"
 #include "sim/config/config_node.h"
-#include "sim/parameters.h"
+#include "sim/parameter_bindings.h"
 
 namespace tcpmsim {
 

@@ -86,7 +86,7 @@ struct Evaluation {
   const double* state;
   double* signals;
   const double* parameters;
-  RunState* const* run_states;
+  const std::unique_ptr<RunState>* run_states;
   const Signal* const* prescribed;
 };
 
@@ -131,8 +131,8 @@ class Component {
   // when a run starts). Components without run state return nullptr.
   virtual std::unique_ptr<RunState> create_run_state(const RunSetup& setup) const;
   // Conditions between parameters that a single range cannot state ("P_min < P_max"): returns
-  // the problem, starting with the parameter's path, or "". Called when a run starts with
-  // values a context changed.
+  // the problem, naming the keys it concerns relative to the component, or "" (the error
+  // names the component). Called when a run starts with values a context changed.
   virtual std::string check_parameters(const RunSetup& setup) const;
 
   // Writes the component's initial state. Called in evaluation order with the outputs of
@@ -153,6 +153,7 @@ class Component {
 
   // The first time strictly after evaluation.time at which this component is discontinuous
   // (signal steps, switching edges, sample instants). The integrator stops there and restarts.
+  // The evaluation has no state (null): breakpoints follow from time, signals and run state.
   virtual double next_breakpoint_after(const Evaluation& evaluation) const;
 
   // Called at a breakpoint (and once at the start of a run), after outputs were computed with
@@ -181,7 +182,7 @@ class Component {
   // May change the tolerances of the component's own states for the coming steps (called at
   // every segment start and after every event): a state that matters only at some times need
   // not be resolved to the configured tolerance at others. Both spans hold the configured
-  // values on entry.
+  // values on entry. The evaluation carries parameters and run state only (time 0, no state).
   virtual void adapt_tolerances(const Evaluation& evaluation, std::span<double> absolute,
                                 std::span<double> relative) const;
 
@@ -235,7 +236,8 @@ class Component {
   const T& run_state(const Evaluation& evaluation) const {
     return static_cast<const T&>(*evaluation.run_states[index_]);
   }
-  // For the methods that act (at_breakpoint, sense, at_event): the run state is the context's.
+  // For the methods that act (at_breakpoint, sense, at_event), and for scratch space in
+  // compute_observations: the run state is the context's.
   template <typename T>
   T& mutable_run_state(const Evaluation& evaluation) const {
     return static_cast<T&>(*evaluation.run_states[index_]);

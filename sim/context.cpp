@@ -9,7 +9,6 @@ Context::Context(const System& system)
       signals_(static_cast<std::size_t>(system.signal_size()), 0.0),
       state_(static_cast<std::size_t>(system.state_size()), 0.0),
       run_states_(system.components().size()),
-      run_state_pointers_(system.components().size(), nullptr),
       rebuilt_signals_(system.signal_slots().size()) {
   parameters_.reserve(system.parameters().size());
   for (const auto& parameter : system.parameters())
@@ -42,6 +41,7 @@ void Context::set_parameter(int index, double value) {
   if (std::string problem = parameter_problem(info.declaration, value); !problem.empty())
     throw ParameterError(info.declaration.path, problem);
   parameters_[static_cast<std::size_t>(index)] = value;
+  prepared_ = false;
 }
 
 bool Context::parameters_changed() const {

@@ -37,12 +37,12 @@ class Context {
   // parameter's range.
   void set_parameter(std::string_view path, double value);
   void set_parameter(int index, double value);
-  std::span<const double> parameter_values() const { return parameters_; }
   // Whether any parameter differs from the value the model was built with.
   bool parameters_changed() const;
 
   // The continuous state (after a run: its final state), the outputs of the latest evaluation,
-  // and a prescribed signal as this run applies it (valid after System::prepare).
+  // and a prescribed signal: as built until System::prepare, then as this run's parameters
+  // make it.
   std::vector<double>& state() { return state_; }
   const std::vector<double>& state() const { return state_; }
   const std::vector<double>& signals() const { return signals_; }
@@ -60,9 +60,10 @@ class Context {
   std::vector<double> signals_;
   std::vector<double> state_;
   std::vector<std::unique_ptr<RunState>> run_states_;
-  std::vector<RunState*> run_state_pointers_;
   std::vector<const Signal*> prescribed_;
   std::vector<std::unique_ptr<Signal>> rebuilt_signals_;
+  // Prepared for a run not yet started (System::initialize then skips preparing again).
+  bool prepared_ = false;
 };
 
 }  // namespace tcpmsim

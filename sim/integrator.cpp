@@ -2,6 +2,7 @@
 
 #include "sim/serial_vector_kernels.h"
 #include "sim/time_grid.h"
+#include "sim/value_check.h"
 
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
@@ -64,12 +65,6 @@ struct detail::CvodeHandles {
 
 namespace {
 
-std::string format_number(double value) {
-  std::ostringstream text;
-  text << value;
-  return text.str();
-}
-
 // Output times t0 + k * interval, then t_end if that is off the grid.
 class OutputGrid {
  public:
@@ -107,7 +102,7 @@ int right_hand_side(realtype t, N_Vector y, N_Vector ydot, void* user_data) {
   for (int i = 0; i < size; ++i) {
     if (!std::isfinite(state[i])) {
       cv.rhs_problem = "state " + cv.system->states()[static_cast<std::size_t>(i)].name +
-                       " is not finite at t = " + format_number(t) + " s";
+                       " is not finite at t = " + number_text(t) + " s";
       return kUnrecoverable;
     }
   }
@@ -116,8 +111,7 @@ int right_hand_side(realtype t, N_Vector y, N_Vector ydot, void* user_data) {
     if (!std::isfinite(derivatives[i])) {
       const auto& info = cv.system->states()[static_cast<std::size_t>(i)];
       cv.rhs_problem = "the derivative of " + info.name + " (component " + info.owner->group() +
-                       "/" + info.owner->kind() + ") is not finite at t = " + format_number(t) +
-                       " s";
+                       "/" + info.owner->kind() + ") is not finite at t = " + number_text(t) + " s";
       return kRecoverable;
     }
   }
@@ -416,7 +410,7 @@ SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output, Ou
       CVodeGetLastStep(cv.memory, &last_step);
       collapsed_steps = last_step < 1e3 * time_margin(reached) ? collapsed_steps + 1 : 0;
       if (collapsed_steps > 100) {
-        throw failure("CVODE stalled (the step size collapsed to " + format_number(last_step) +
+        throw failure("CVODE stalled (the step size collapsed to " + number_text(last_step) +
                       " s)");
       }
       // Interpolate every output time this step covered; a time equal to a breakpoint belongs

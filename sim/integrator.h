@@ -95,8 +95,6 @@ class Integrator {
   SolverStatistics run(double t0, double t_end, OutputTimes output, OutputSink& sink,
                        const Progress& progress = {});
 
-  const std::vector<double>& final_state() const { return context_.state(); }
-
  private:
   void attach_linear_solver();
   void start_segment(double start, bool first);

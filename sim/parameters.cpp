@@ -1,22 +1,16 @@
 #include "sim/parameters.h"
 
-#include <cmath>
-#include <sstream>
-
 namespace tcpmsim {
 
 ParameterError::ParameterError(const std::string& path, const std::string& problem)
-    : std::invalid_argument(path.empty() ? problem : path + ": " + problem),
-      path_(path),
-      problem_(problem) {}
+    : std::invalid_argument(path.empty() ? problem : path + ": " + problem) {}
 
 std::string parameter_problem(const ParameterDeclaration& declaration, double value) {
-  std::ostringstream text;
-  text << value;
-  if (declaration.unit != "1") text << " " << declaration.unit;
-  if (!std::isfinite(value)) return "expected a finite value, got " + text.str();
-  if (!declaration.check.accepts(value))
-    return "expected " + declaration.check.expectation(declaration.unit) + ", got " + text.str();
+  const std::string shown =
+      number_text(value) + (declaration.unit == "1" ? "" : " " + declaration.unit);
+  if (std::string problem = declaration.check.problem(value, declaration.unit, shown);
+      !problem.empty())
+    return problem;
   if (declaration.extra_check) return declaration.extra_check(value);
   return {};
 }

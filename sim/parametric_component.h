@@ -4,7 +4,7 @@
 #include <utility>
 
 #include "sim/component.h"
-#include "sim/parameters.h"
+#include "sim/parameter_bindings.h"
 
 namespace tcpmsim {
 
@@ -33,7 +33,6 @@ class ParametricComponent : public Component {
   const P& run_parameters(const Evaluation& evaluation) const {
     return run_state<Run>(evaluation).parameters;
   }
-  const ParameterBindings<P>& bindings() const { return bindings_; }
 
  private:
   struct Run final : RunState {

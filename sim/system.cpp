@@ -40,10 +40,6 @@ void SystemBuilder::connect(std::string_view port, std::string_view source_outpu
   port_connections_.emplace_back(std::string(port), std::string(source_output));
 }
 
-bool SystemBuilder::has_port(std::string_view port) const {
-  return ports_.count(std::string(port)) > 0;
-}
-
 bool SystemBuilder::is_connected(std::string_view port) const {
   for (const auto& [connected, source] : port_connections_) {
     if (connected == port) return true;
@@ -88,20 +84,20 @@ void System::assign_slices() {
       states_.push_back({std::move(name), declared.unit, declared.absolute_tolerance, &component});
     }
     state_counts_.push_back(static_cast<int>(states_.size()) - component.state_offset_);
-    component.output_offset_ = signal_count_;
+    component.output_offset_ = static_cast<int>(channels_.size());
     for (const auto& declared : component.outputs()) {
       const std::string name = qualified(component, declared.name);
       if (!channel_by_name_.emplace(name, static_cast<int>(channels_.size())).second) {
         throw std::logic_error("two components publish the output '" + name + "'");
       }
-      channels_.push_back({component.group(), declared.name, declared.unit, signal_count_++,
-                           declared.observed, declared.recorded});
+      channels_.push_back({component.group(), declared.name, declared.unit,
+                           static_cast<int>(channels_.size()), declared.observed,
+                           declared.recorded});
       signal_owner_.push_back(static_cast<int>(c));
     }
     inputs_.push_back(component.inputs());
     component.parameter_offset_ = static_cast<int>(parameters_.size());
-    for (auto& declared : component.parameters())
-      parameters_.push_back({std::move(declared), &component, -1, {}});
+    for (auto& declared : component.parameters()) parameters_.push_back({std::move(declared), {}});
     parameter_counts_.push_back(static_cast<int>(parameters_.size()) - component.parameter_offset_);
     component.signal_offset_ = static_cast<int>(signal_slots_.size());
     for (const auto& declared : component.signals()) {
@@ -109,14 +105,14 @@ void System::assign_slices() {
                       declared.name,
                       declared.unit,
                       declared.signal,
-                      &component,
                       static_cast<int>(parameters_.size()),
                       0};
-      const int index = static_cast<int>(signal_slots_.size());
       for (auto& parameter : declared.signal->parameters())
-        parameters_.push_back({std::move(parameter), &component, index, {}});
+        parameters_.push_back({std::move(parameter), {}});
       slot.parameter_count = static_cast<int>(parameters_.size()) - slot.first_parameter;
-      slot_by_name_[slot.group + "." + slot.name] = index;
+      const std::string name = qualified(component, declared.name);
+      if (!slot_by_name_.emplace(name, static_cast<int>(signal_slots_.size())).second)
+        throw std::logic_error("a component declares the signal '" + name + "' twice");
       signal_slots_.push_back(std::move(slot));
     }
   }
@@ -278,15 +274,14 @@ std::optional<int> System::signal_slot(std::string_view group, std::string_view 
 // ---------------------------------------------------------------------------------------------
 // Runs
 
-Evaluation System::evaluation(const Context& context, double time, double signal_time,
+Evaluation System::evaluation(Context& context, double time, double signal_time,
                               const double* state) const {
-  auto& mutable_context = const_cast<Context&>(context);
   return Evaluation{time,
                     signal_time,
                     state,
-                    mutable_context.signals_.data(),
+                    context.signals_.data(),
                     context.parameters_.data(),
-                    context.run_state_pointers_.data(),
+                    context.run_states_.data(),
                     context.prescribed_.data()};
 }
 
@@ -333,19 +328,29 @@ void System::check_run_parameters(const Context& context) const {
 
 void System::prepare(Context& context) const {
   if (context.system_ != this) throw std::logic_error("the context belongs to another system");
+  context.prepared_ = false;
   rebuild_signals(context);
-  for (const auto& derivation : derivations_)
-    context.parameters_[static_cast<std::size_t>(derivation.parameter)] = derivation.rule(context);
+  for (const auto& derivation : derivations_) {
+    const auto index = static_cast<std::size_t>(derivation.parameter);
+    const double value = derivation.rule(context);
+    // A derived value meets its declared range like any other.
+    if (std::string problem = parameter_problem(parameters_[index].declaration, value);
+        !problem.empty())
+      throw ParameterError(parameters_[index].declaration.path,
+                           problem + " (derived: " + parameters_[index].derived_from + ")");
+    context.parameters_[index] = value;
+  }
   // The values the model was built with passed these checks when it was read.
   if (context.parameters_changed()) check_run_parameters(context);
   for (std::size_t c = 0; c < components_.size(); ++c) {
     context.run_states_[c] = components_[c]->create_run_state(setup_of(context, c));
-    context.run_state_pointers_[c] = context.run_states_[c].get();
+    context.prepared_ = true;
   }
 }
 
 void System::initialize(Context& context, double time, double* state) const {
-  prepare(context);
+  if (!context.prepared_) prepare(context);
+  context.prepared_ = false;  // this run uses the run states up: the next one starts afresh
   std::fill(state, state + state_size(), 0.0);
   const Evaluation now = evaluation(context, time, time, state);
   for (int round = 0; round < 2; ++round) {
@@ -375,7 +380,7 @@ void System::evaluate_derivatives(Context& context, double time, double signal_t
   }
 }
 
-double System::next_breakpoint_after(const Context& context, double time) const {
+double System::next_breakpoint_after(Context& context, double time) const {
   const Evaluation now = evaluation(context, time, time, nullptr);
   double next = kNoBreakpoint;
   for (const auto& component : components_) {
@@ -404,7 +409,7 @@ void System::at_breakpoint(Context& context, double time, double left_limit,
   evaluate_outputs(context, time, left_limit, state);
 }
 
-void System::adapt_tolerances(const Context& context, double* absolute, double* relative) const {
+void System::adapt_tolerances(Context& context, double* absolute, double* relative) const {
   const Evaluation now = evaluation(context, 0.0, 0.0, nullptr);
   for (std::size_t c = 0; c < components_.size(); ++c) {
     const auto& component = components_[c];
@@ -487,8 +492,8 @@ std::string System::check_component_contracts(Context& context, double time,
 
 SparsityPattern System::jacobian_pattern() const {
   // States each signal depends on, through chains of direct feedthrough.
-  std::vector<std::vector<int>> signal_states(static_cast<std::size_t>(signal_count_));
-  std::vector<char> resolved(static_cast<std::size_t>(signal_count_), 0);
+  std::vector<std::vector<int>> signal_states(channels_.size());
+  std::vector<char> resolved(channels_.size(), 0);
   auto resolve = [&](auto&& self, int signal) -> const std::vector<int>& {
     auto index = static_cast<std::size_t>(signal);
     if (resolved[index]) return signal_states[index];

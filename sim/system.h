@@ -36,8 +36,6 @@ struct ChannelInfo {
 // applies. A derived parameter follows others by a rule and cannot be set itself.
 struct ParameterInfo {
   ParameterDeclaration declaration;
-  const Component* owner;
-  int signal_slot = -1;      // >= 0: a parameter of that prescribed signal
   std::string derived_from;  // non-empty: how it is derived
 };
 
@@ -47,7 +45,6 @@ struct SignalSlot {
   std::string name;
   std::string unit;
   const Signal* signal;  // as built
-  const Component* owner;
   int first_parameter = 0;
   int parameter_count = 0;
 };
@@ -71,7 +68,7 @@ class System {
   System& operator=(const System&) = delete;
 
   int state_size() const { return static_cast<int>(states_.size()); }
-  int signal_size() const { return signal_count_; }
+  int signal_size() const { return static_cast<int>(channels_.size()); }
   const std::vector<StateInfo>& states() const { return states_; }
   const std::vector<ChannelInfo>& channels() const { return channels_; }
   const std::vector<std::unique_ptr<Component>>& components() const { return components_; }
@@ -93,7 +90,8 @@ class System {
   // Makes the context ready for a run: signals rebuilt where their parameters changed, derived
   // parameters computed, conditions checked (ParameterError), run states created afresh.
   void prepare(Context& context) const;
-  // prepare(), then the initial state.
+  // prepare() (unless the context is prepared already: prepared since its last run and since
+  // its last parameter change), then the initial state.
   void initialize(Context& context, double time, double* state) const;
   // Computes every output, observed ones included; afterwards context.signals() holds them.
   void evaluate_outputs(Context& context, double time, double signal_time,
@@ -102,14 +100,14 @@ class System {
   void evaluate_derivatives(Context& context, double time, double signal_time, const double* state,
                             double* derivatives) const;
 
-  double next_breakpoint_after(const Context& context, double time) const;
+  double next_breakpoint_after(Context& context, double time) const;
   // Lets sampled components act at a breakpoint. Outputs are recomputed with signals sampled
   // at `left_limit` (just before the instant) first, so a controller samples what was true
   // just before it acts.
   void at_breakpoint(Context& context, double time, double left_limit, const double* state) const;
 
   // Lets components adapt per-state tolerances; both arrays hold the configured ones on entry.
-  void adapt_tolerances(const Context& context, double* absolute, double* relative) const;
+  void adapt_tolerances(Context& context, double* absolute, double* relative) const;
 
   // Events: all components' zero-crossing functions, concatenated.
   int event_count() const { return event_count_; }
@@ -130,9 +128,8 @@ class System {
 
  private:
   friend class SystemBuilder;
-  friend class Context;
   System() = default;
-  Evaluation evaluation(const Context& context, double time, double signal_time,
+  Evaluation evaluation(Context& context, double time, double signal_time,
                         const double* state) const;
   void assign_slices();
   void wire(const SystemBuilder& builder);
@@ -154,7 +151,6 @@ class System {
   std::vector<ChannelInfo> channels_;
   std::unordered_map<std::string, int> channel_by_name_;  // "group.name" -> channel
   std::vector<int> signal_owner_;                         // component index that writes each signal
-  int signal_count_ = 0;
   std::vector<ParameterInfo> parameters_;
   std::unordered_map<std::string, int> parameter_by_path_;
   std::vector<SignalSlot> signal_slots_;
@@ -186,7 +182,6 @@ class SystemBuilder {
   void export_input(std::string_view port, const Component& consumer, std::string_view input_name);
   // Connects an exported port to the output "group.name".
   void connect(std::string_view port, std::string_view source_output);
-  bool has_port(std::string_view port) const;
   // Whether anything has been connected to an exported port.
   bool is_connected(std::string_view port) const;
 

@@ -42,13 +42,18 @@ bool ValueCheck::accepts(double value) const {
   return value <= upper_;
 }
 
-namespace {
 std::string number_text(double value) {
   std::ostringstream out;
   out << value;
   return out.str();
 }
-}  // namespace
+
+std::string ValueCheck::problem(double value, std::string_view unit,
+                                const std::string& shown) const {
+  if (!std::isfinite(value)) return "expected a finite value, got " + shown;
+  if (!accepts(value)) return "expected " + expectation(unit) + ", got " + shown;
+  return {};
+}
 
 std::string ValueCheck::expectation(std::string_view unit) const {
   const std::string in_unit = unit.empty() || unit == "1" ? "" : " in " + std::string(unit);

@@ -20,11 +20,17 @@ class ValueCheck {
   bool unbounded() const;
   // "a positive value", "a value in [0, 1]", ... followed by " in <unit>" when given.
   std::string expectation(std::string_view unit = "") const;
+  // "" if `value` is finite and accepted, else "expected ..., got <shown>" (`shown`: the value
+  // as its source gave it).
+  std::string problem(double value, std::string_view unit, const std::string& shown) const;
 
  private:
   double lower_ = -std::numeric_limits<double>::infinity();
   double upper_ = std::numeric_limits<double>::infinity();
   bool lower_open_ = false;
 };
+
+// A number as messages print it (the default stream format: 0.001, 1e-09, 2.5).
+std::string number_text(double value);
 
 }  // namespace tcpmsim

@@ -192,3 +192,17 @@ TEST_CASE(
   CHECK_THROWS_WITH(scenario.system->prepare(context),
                     Catch::Contains("controller.reference: expected range lower < upper"));
 }
+
+TEST_CASE("A derived parameter meets its declared range when a run starts") {
+  // The coil's preload length follows the spring's ends; ends that cross make it negative.
+  Scenario scenario =
+      load_scenario(source_path("configs/ch4/sa_end_stop_max.yaml"), {}, shared_units());
+  Context context = scenario.make_context();
+  context.set_parameter("spring.first_end", 0.2);
+  CHECK_THROWS_WITH(scenario.system->prepare(context),
+                    "spring.inductance.preload_length: expected a positive value in m, got "
+                    "-0.078 m (derived: second_end - first_end at the start)");
+  context.set_parameter("spring.first_end", 0.002);
+  scenario.system->prepare(context);
+  CHECK(context.parameter("spring.inductance.preload_length") == 0.122 - 0.002);
+}

@@ -70,12 +70,6 @@ struct ConfigDocument {
 
 namespace {
 
-std::string number_text(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
-
 std::string quantity_text(std::string_view si_unit) {
   return si_unit == "1" ? std::string("number") : "quantity in " + std::string(si_unit);
 }
@@ -425,9 +419,8 @@ double ConfigNode::as_quantity(std::string_view si_unit, const ValueCheck& check
            (dimensionless ? " (expected a dimensionless number)" : ""));
     }
   }
-  if (!std::isfinite(value)) fail("expected a finite value, got '" + text + "'");
-  if (!check.accepts(value))
-    fail("expected " + check.expectation(si_unit) + ", got '" + text + "'");
+  if (std::string problem = check.problem(value, si_unit, "'" + text + "'"); !problem.empty())
+    fail(problem);
   return value;
 }
 
