@@ -21,7 +21,7 @@ std::complex<double> force_transmissibility(const CoilSpringChain& chain, double
   // (K + i omega C - omega^2 M) X = k_0 e_0 U for a unit end motion U at the first end;
   // C = beta K with beta the chain's stiffness-proportional damping time.
   const int n = chain.defaults().windings;
-  const double beta = 2.0 * chain.defaults().damping_ratio / chain.first_mode_frequency();
+  const double beta = chain.defaults().damping_time();
   const std::complex<double> element_factor(1.0, omega * beta);
   Eigen::MatrixXcd system = chain.stiffness_matrix().cast<std::complex<double>>() * element_factor -
                             chain.mass_matrix().cast<std::complex<double>>() * (omega * omega);

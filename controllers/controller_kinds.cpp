@@ -56,7 +56,7 @@ void build_muscle_drive(const ConfigNode& node, const std::string& name, Scenari
   // Without a power signal a controller commands it (checked once every instance is built).
   const bool takes_command = !node.has("power");
   SystemBuilder& system = build.system();
-  auto& drive = system.add(MuscleDrive::from_config(name, node, build.signals(), takes_command));
+  auto& drive = system.add(MuscleDrive::from_config(name, node, build.signals()));
   system.connect(drive, "heater_resistance", muscle.name + ".resistance");
   system.connect(drive, "inductance", muscle.name + ".inductance");
   system.connect(muscle.name + ".power", name + ".power");

@@ -15,6 +15,10 @@ using P = MuscleDriveParameters;
 PwmSupply supply_of(const P& p) {
   return {p.supply_voltage, p.series_resistance};
 }
+
+std::string demand_problem(const Signal& demand, double duration) {
+  return demand.range(0.0, duration).first < 0.0 ? "the power demand goes negative" : "";
+}
 }  // namespace
 
 // A run's parameters, its random stream and what the drive holds between instants.
@@ -62,8 +66,7 @@ MuscleDrive::MuscleDrive(std::string group, MuscleDriveParameters defaults,
 
 std::unique_ptr<MuscleDrive> MuscleDrive::from_config(const std::string& group,
                                                       const ConfigNode& node,
-                                                      const SignalContext& signals,
-                                                      bool controlled) {
+                                                      const SignalContext& signals) {
   node.declare({"model", "fidelity", "pwm_frequency", "supply_voltage", "series_resistance",
                 "measurement", "power"});
   P p;
@@ -96,15 +99,11 @@ std::unique_ptr<MuscleDrive> MuscleDrive::from_config(const std::string& group,
   // The drive of the single-muscle scenario keeps its historical stream, so that its records
   // stay what they were; every other drive has its own.
   if (group != "drive") p.stream = group + ".muscle_drive.measurement";
-  std::unique_ptr<Signal> demand;
-  if (controlled) {
-    if (node.has("power"))
-      node.at("power").fail("the power comes from the controller; remove drive.power");
-  } else {
-    const ConfigNode power = node.at("power");
-    demand = read_signal(power, "W", signals);
-    if (demand->range(0.0, signals.duration).first < 0.0)
-      power.fail("the power demand goes negative");
+  std::unique_ptr<Signal> demand;  // none: a controller commands the power
+  if (const auto power = node.find("power")) {
+    demand = read_signal(*power, "W", signals);
+    if (std::string problem = demand_problem(*demand, signals.duration); !problem.empty())
+      power->fail(problem);
   }
   return std::make_unique<MuscleDrive>(group, p, std::move(bind), std::move(demand),
                                        signals.duration);
@@ -143,19 +142,9 @@ std::unique_ptr<RunState> MuscleDrive::create_run_state(const RunSetup& setup) c
 }
 
 std::string MuscleDrive::check_parameters(const RunSetup& setup) const {
-  if (power_demand_ && signal(setup.context, 0).range(0.0, demand_duration_).first < 0.0)
-    return "power: the power demand goes negative";
-  return {};
-}
-
-long MuscleDrive::measurements(const Context& context) const {
-  return context.run_state<Run>(*this).measurements;
-}
-
-double MuscleDrive::decay_time(const MuscleDriveParameters& p, double inductance,
-                               double heater_resistance) {
-  return inductance / (heater_resistance + p.path_resistance) *
-         std::log(supply_of(p).on_current(heater_resistance) / p.threshold_current);
+  if (!power_demand_) return {};
+  const std::string problem = demand_problem(signal(setup.context, 0), demand_duration_);
+  return problem.empty() ? problem : "power: " + problem;
 }
 
 void MuscleDrive::initialize(const Evaluation&, std::span<double> own_state) const {
@@ -190,8 +179,10 @@ void MuscleDrive::sense(const Evaluation& evaluation) const {
   // Nothing to report after a period with the current always on, or never on.
   const auto k = grid_index_at(evaluation.time, run.period());
   if (!k || *k < 1 || run.on_fraction >= 1.0 || run.on_fraction <= 0.0) return;
-  run.measure = run.measured(
-      decay_time(run.p, input(evaluation, kInductance), input(evaluation, kHeaterResistance)));
+  const double heater = input(evaluation, kHeaterResistance);
+  run.measure =
+      run.measured(decay_time(input(evaluation, kInductance), heater, run.p.path_resistance,
+                              supply_of(run.p).on_current(heater), run.p.threshold_current));
 }
 
 double MuscleDrive::next_breakpoint_after(const Evaluation& evaluation) const {

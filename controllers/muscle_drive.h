@@ -58,9 +58,10 @@ class MuscleDrive final : public Component {
   // input from a controller.
   MuscleDrive(std::string group, MuscleDriveParameters defaults,
               ParameterBindings<MuscleDriveParameters> bindings,
-              std::unique_ptr<Signal> power_demand, double demand_duration = 0.0);
+              std::unique_ptr<Signal> power_demand, double demand_duration);
+  // Without a `power` key the drive takes its power from a controller.
   static std::unique_ptr<MuscleDrive> from_config(const std::string& group, const ConfigNode& node,
-                                                  const SignalContext& signals, bool controlled);
+                                                  const SignalContext& signals);
 
   std::vector<StateDeclaration> states() const override;
   std::vector<OutputDeclaration> outputs() const override;
@@ -84,12 +85,6 @@ class MuscleDrive final : public Component {
                         std::span<double> relative) const override;
 
   const MuscleDriveParameters& defaults() const { return defaults_; }
-  bool controlled() const { return !power_demand_; }
-  // The decay time the measurement would see for inductance L and heater resistance R_m [s].
-  static double decay_time(const MuscleDriveParameters& p, double inductance,
-                           double heater_resistance);
-  // How many L* measurements a run has made so far.
-  long measurements(const Context& context) const;
 
  private:
   struct Run;

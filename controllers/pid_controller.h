@@ -99,8 +99,8 @@ class DiscretePid {
 // Before its first sample, and at any sample whose estimate is not finite (the estimator has
 // no deflection until the Muscle Drive's first measurement), the controller holds its idle
 // power (initial_power if given, else P_min) and neither integrates nor remembers the estimate;
-// control starts at the first finite estimate. A sample index that does not follow the
-// previous one (a new run) restarts it.
+// control starts at the first finite estimate. Each run starts afresh (its run state is
+// new); within a run, a sample index that does not follow the previous one restarts it.
 class PidController final : public SampledComponent {
  public:
   enum class Target { deflection, force };
@@ -131,7 +131,6 @@ class PidController final : public SampledComponent {
 
   Target target() const { return target_; }
   const PidSettings& defaults() const { return defaults_; }
-  const Signal& reference() const { return *reference_; }  // as built
   // r and dr/dt as the sample at t uses them (right of a step at t), of the reference as built.
   double reference_at(double time) const { return reference_at(*reference_, time); }
   static double reference_at(const Signal& reference, double time);

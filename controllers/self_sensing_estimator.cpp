@@ -153,10 +153,6 @@ std::string SelfSensingEstimator::check_parameters(const RunSetup& setup) const 
   return {};
 }
 
-const SelfSensingEstimation& SelfSensingEstimator::estimation(const Context& context) const {
-  return context.run_state<Run>(*this).estimation;
-}
-
 void SelfSensingEstimator::compute_outputs(const Evaluation& evaluation) const {
   const SelfSensingEstimate& estimate = run_state<Run>(evaluation).estimation.estimate();
   set_output(evaluation, kDeflection, estimate.deflection);
@@ -233,7 +229,7 @@ void SelfSensingEstimation::publish() {
   estimate_.deflection = model_deflection_ + parameters_.deflection_offset;
   estimate_.raw_deflection = model_raw_deflection_ + parameters_.deflection_offset;
   estimate_.velocity = velocity_;
-  estimate_.force = sls_.value() + thermal_.value() + parameters_.mechanics.force_offset +
+  estimate_.force = sls::total_force(parameters_.mechanics, sls_.value(), thermal_.value()) +
                     parameters_.force_offset;  // (7.5)
 }
 

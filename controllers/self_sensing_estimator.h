@@ -59,8 +59,6 @@ class SelfSensingEstimation {
   double period() const { return period_; }
   void set_deflection_offset(double offset);
   void set_force_offset(double offset);
-  double deflection_offset() const { return parameters_.deflection_offset; }
-  double force_offset() const { return parameters_.force_offset; }
   // (7.4) of the estimator's own law, without filters or calibration.
   double model_deflection(double inductance_measure) const;
 
@@ -102,11 +100,11 @@ class SelfSensingEstimation {
 // (measured during the PWM period that just ended), and "power_command", the power the
 // controller commanded at the previous sample and held since.
 //
-// Start-up and bad samples. The first sample (and any sample whose index does not follow the
-// previous one, i.e. a new run) starts the estimator: F_T = initial_thermal_force; the window
-// filters grow until full (see discrete_filters.h). An L* that is not finite or not positive
-// is no measurement (the Muscle Drive reports 0 before its first off-phase): it is not fed to
-// the moving average and median. A median output at or below lambda_0 lies outside (7.4)'s
+// Start-up and bad samples. The first sample of a run (and any sample whose index does not
+// follow the previous one, i.e. skipped samples) starts the estimator: F_T = initial_thermal_force;
+// the window filters grow until full (see discrete_filters.h). An L* that is not finite or not
+// positive is no measurement (the Muscle Drive reports 0 before its first off-phase): it is not fed
+// to the moving average and median. A median output at or below lambda_0 lies outside (7.4)'s
 // domain (the deflection would be infinite or below -lambda_x). In both cases the raw
 // deflection holds its last value and the low-pass, velocity and SLS run on with it; before
 // the first usable value they stay NaN, and the SLS starts relaxed at the first one.
@@ -143,8 +141,6 @@ class SelfSensingEstimator final : public SampledComponent {
   void compute_outputs(const Evaluation& evaluation) const override;
 
   const SelfSensingEstimatorParameters& defaults() const { return defaults_; }
-  // A run's estimation, for inspection.
-  const SelfSensingEstimation& estimation(const Context& context) const;
 
  protected:
   void sample(const Evaluation& evaluation, long index) const override;

@@ -81,7 +81,6 @@ class CoilSpringInductance final : public Component {
   void compute_observations(const Evaluation& evaluation) const override;
 
   // The model as built.
-  const SpringInductanceModel& model() const { return *built_; }
   const CoilSpringInductanceParameters& defaults() const { return built_->parameters(); }
 
  private:

@@ -19,9 +19,6 @@ class ImposedLoad final : public Component {
   void compute_outputs(const Evaluation& evaluation) const override;
   double next_breakpoint_after(const Evaluation& evaluation) const override;
 
-  Quantity quantity() const { return quantity_; }
-  const Signal& built_signal() const { return *signal_; }
-
  private:
   Quantity quantity_;
   std::unique_ptr<Signal> signal_;

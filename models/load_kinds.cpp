@@ -84,16 +84,34 @@ void build_imposed_force(const ConfigNode& node, const std::string& name, Scenar
   system.connect(encoder, "measured", muscles.front().name + ".deflection");
 }
 
+// What a held muscle contributes to the static balance at the start.
+struct RestTerms {
+  double thermal_force;  // F_T(0)
+  double force_offset;   // phi_0
+  double k1;
+};
+
+// The deflection at which `weight` hangs still from muscles at rest: the static balance of (7.5)
+// with relaxed dashpots, m g = sum (k1 x + F_T(0) + phi_0). Attached terms carry no force at
+// rest here (a Maxwell arm carries none; an effect with a rest stiffness would need adding).
+template <typename Terms>
+double static_balance(double weight, const std::vector<Held>& muscles, Terms terms) {
+  double net = weight, stiffness = 0.0;
+  for (const auto& muscle : muscles) {
+    const RestTerms rest = terms(muscle);
+    net = net - rest.thermal_force - rest.force_offset;
+    stiffness += rest.k1;
+  }
+  return net / stiffness;
+}
+
 void build_hanging_mass(const ConfigNode& node, const std::string& name, ScenarioBuilder& build) {
   const auto muscles = held_muscles(node, build);
-  // Static balance of (7.5) with relaxed dashpots: m g = sum (k1 x + F_T(0) + phi_0).
   const auto equilibrium = [muscles](double weight) {
-    double net = weight, stiffness = 0.0;
-    for (const auto& muscle : muscles) {
-      net = net - muscle.facts.initial_thermal_force - muscle.facts.mechanics.force_offset;
-      stiffness += muscle.facts.mechanics.k1;
-    }
-    return net / stiffness;
+    return static_balance(weight, muscles, [](const Held& muscle) {
+      return RestTerms{muscle.facts.initial_thermal_force, muscle.facts.mechanics.force_offset,
+                       muscle.facts.mechanics.k1};
+    });
   };
   bool at_equilibrium = false;
   SystemBuilder& system = build.system();
@@ -102,14 +120,13 @@ void build_hanging_mass(const ConfigNode& node, const std::string& name, Scenari
     system.derive(
         name + ".initial_deflection",
         [muscles, name](const Context& context) {
-          double net = context.parameter(name + ".mass") * context.parameter(name + ".gravity");
-          double stiffness = 0.0;
-          for (const auto& muscle : muscles) {
-            net = net - muscle.facts.initial_thermal_force_in(context) -
-                  context.parameter(muscle.name + ".mechanics.force_offset");
-            stiffness += context.parameter(muscle.name + ".mechanics.k1");
-          }
-          return net / stiffness;
+          return static_balance(
+              context.parameter(name + ".mass") * context.parameter(name + ".gravity"), muscles,
+              [&context](const Held& muscle) {
+                return RestTerms{muscle.facts.initial_thermal_force_in(context),
+                                 context.parameter(muscle.name + ".mechanics.force_offset"),
+                                 context.parameter(muscle.name + ".mechanics.k1")};
+              });
         },
         "the static balance m g = sum of k1 x + F_T + phi_0");
   }

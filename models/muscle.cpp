@@ -3,6 +3,7 @@
 #include <set>
 
 #include "models/coil_impedance.h"
+#include "models/laws/thermal_force.h"
 #include "models/sls_mechanics.h"
 #include "models/thermal_force.h"
 #include "models/thermal_node.h"
@@ -36,16 +37,18 @@ ThermalForm build_physical(const ConfigNode& muscle, const std::string& name,
       build.system().add(PhysicalThermalForce::from_config(name, muscle.at("thermal_force")));
   build.system().connect(force, "temperature", name + ".temperature");
   // The thermal node starts at its initial temperature; F_T follows from it.
-  const double initial = force.defaults().force_per_kelvin *
-                         (node.initial_temperature(0.0) - force.defaults().reference_temperature);
+  const double initial =
+      thermal_force::physical(force.defaults().force_per_kelvin, node.initial_temperature(0.0),
+                              force.defaults().reference_temperature);
   const bool given = node.defaults().initial_temperature.has_value();
   auto in_run = [name, given](const Context& context) {
     const double start =
         given
             ? context.parameter(name + ".thermal.initial_temperature")
             : context.signal(*context.system().signal_slot(name, "ambient_temperature")).value(0.0);
-    return context.parameter(name + ".thermal_force.force_per_kelvin") *
-           (start - context.parameter(name + ".thermal_force.reference_temperature"));
+    return thermal_force::physical(
+        context.parameter(name + ".thermal_force.force_per_kelvin"), start,
+        context.parameter(name + ".thermal_force.reference_temperature"));
   };
   return {initial, in_run, true, true};
 }

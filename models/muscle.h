@@ -19,8 +19,9 @@ namespace tcpmsim {
 //   outputs <name>.force, .deflection, .thermal_force, .temperature (if known), .resistance,
 //           .inductance (or .inductance_measure), ...
 // and, for attached effects, <name>.attached_stiffness and <name>.attached_force (force terms
-// affine in the deflection, see SlsMechanics) and <name>.heat_loss (physical form: a heat-loss
-// term in W).
+// affine in the deflection, see SlsMechanics), <name>.attached_rest_stiffness and
+// <name>.attached_rest_force (the same at rest), the output <name>.rest_deflection, and
+// <name>.heat_loss (physical form: a heat-loss term in W).
 
 // What a muscle tells the instances built after it (its drive, its load, its effects).
 struct MuscleFacts {

@@ -57,26 +57,17 @@ std::string SlsMechanics::check_connections() const {
 
 double SlsMechanics::deflection(const Evaluation& evaluation) const {
   if (deflection_imposed()) return input(evaluation, kDeflection);
-  const auto& p = run_parameters(evaluation);
-  if (!has_attachments()) {
-    return sls::deflection_at_force(p, input(evaluation, kForce), input(evaluation, kThermalForce),
-                                    state(evaluation, 0));
-  }
-  // (7.5) with the attached branches, F = (k1 + k2 + S) x - k2 x_d + F_T + phi_0 + B.
-  return (input(evaluation, kForce) - input(evaluation, kThermalForce) - p.force_offset -
-          input_sum(evaluation, kAttachedForce) + p.k2 * state(evaluation, 0)) /
-         (p.k1 + p.k2 + input_sum(evaluation, kAttachedStiffness));
+  return sls::deflection_at_force(run_parameters(evaluation), input(evaluation, kForce),
+                                  input(evaluation, kThermalForce), state(evaluation, 0),
+                                  input_sum(evaluation, kAttachedStiffness),
+                                  input_sum(evaluation, kAttachedForce));
 }
 
 double SlsMechanics::rest_deflection(const Evaluation& evaluation) const {
   if (deflection_imposed()) return input(evaluation, kDeflection);
-  const auto& p = run_parameters(evaluation);
-  if (!has_attachments()) {
-    return sls::rest_deflection(p, input(evaluation, kForce), input(evaluation, kThermalForce));
-  }
-  return (input(evaluation, kForce) - input(evaluation, kThermalForce) - p.force_offset -
-          input_sum(evaluation, kAttachedRestForce)) /
-         (p.k1 + input_sum(evaluation, kAttachedRestStiffness));
+  return sls::rest_deflection(
+      run_parameters(evaluation), input(evaluation, kForce), input(evaluation, kThermalForce),
+      input_sum(evaluation, kAttachedRestStiffness), input_sum(evaluation, kAttachedRestForce));
 }
 
 void SlsMechanics::initialize(const Evaluation& evaluation, std::span<double> own_state) const {

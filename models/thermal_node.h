@@ -48,7 +48,6 @@ class ThermalNode final : public ParametricComponent<ThermalNodeParameters> {
 
   // The temperature the node starts from at `start_time`, with the parameters as built.
   double initial_temperature(double start_time) const;
-  const Signal& ambient_temperature() const { return *ambient_; }
   // Heat leaving the node by its own laws [W] at temperature T and ambient T_amb.
   static double heat_loss(const ThermalNodeParameters& p, double temperature, double ambient);
 

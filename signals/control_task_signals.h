@@ -10,7 +10,7 @@
 namespace tcpmsim {
 
 // The references of the thesis' control tasks (section 7.3.4): a step sequence and a stepped
-// sine sweep. Factories for C++; the YAML keys are read elsewhere (signal_config.cpp).
+// sine sweep. Factories for C++; the YAML keys are read elsewhere (signals/signal_readers.cpp).
 
 // When and at which frequency each sine of a stepped sweep runs.
 struct SweepSchedule {

@@ -8,7 +8,9 @@
 #include "sim/signal_reading.h"
 
 // How each signal kind reads its section (values in `si_unit`). Every signal read here carries
-// a recipe: its numbers are parameters a run context may change (see sim/signal.h). The kinds
+// a recipe: its values (levels, times, bands, amplitudes) are parameters a run context may
+// change (see sim/signal.h); its counts (components, steps, frequencies), switches and drawn
+// random phases are part of its structure. The kinds
 // are registered by name in signals/signal_kinds.h.
 namespace tcpmsim::signal_readers {
 

@@ -1,5 +1,7 @@
 #include "models/effects/maxwell_branch.h"
 
+#include "models/laws/sls.h"
+
 namespace tcpmsim {
 
 MaxwellBranch::MaxwellBranch(std::string group, MaxwellBranchParameters defaults,
@@ -41,13 +43,14 @@ void MaxwellBranch::compute_outputs(const Evaluation& evaluation) const {
 void MaxwellBranch::compute_observations(const Evaluation& evaluation) const {
   const auto& p = run_parameters(evaluation);
   set_output(evaluation, kForce,
-             p.stiffness * (input(evaluation, kDeflection) - state(evaluation, 0)));
+             sls::arm_force(p.stiffness, input(evaluation, kDeflection), state(evaluation, 0)));
 }
 
 void MaxwellBranch::compute_derivatives(const Evaluation& evaluation, double* derivatives) const {
   const auto& p = run_parameters(evaluation);
-  set_derivative(derivatives, 0,
-                 p.stiffness / p.damping * (input(evaluation, kDeflection) - state(evaluation, 0)));
+  set_derivative(
+      derivatives, 0,
+      sls::arm_rate(p.stiffness, p.damping, input(evaluation, kDeflection), state(evaluation, 0)));
 }
 
 }  // namespace tcpmsim

@@ -23,8 +23,4 @@ ResistanceLaw ResistanceLaw::thermal(double resistance, double temperature_coeff
           reference_temperature};
 }
 
-double StaticForceLaw::operator()(double deflection, double temperature) const {
-  return phi_x * deflection + phi_T * (temperature - reference_temperature) + phi_0;  // (6.9)
-}
-
 }  // namespace tcpmsim

@@ -37,14 +37,4 @@ struct ResistanceLaw {
                                double reference_temperature, double strain_coefficient = 0.0);
 };
 
-// Static force law (6.9): F = phi_x x + phi_T (T - T_ref) + phi_0.
-struct StaticForceLaw {
-  double phi_x = 0.0;                     // [N/m]
-  double phi_T = 0.0;                     // [N/K]
-  double phi_0 = 0.0;                     // [N]
-  double reference_temperature = 273.15;  // [K]
-
-  double operator()(double deflection, double temperature) const;
-};
-
 }  // namespace tcpmsim

@@ -12,8 +12,9 @@
 // response of stiffness k1 + k2). Relaxation after a deflection step has tau = c/k2; creep
 // under a force step has tau = c (k1 + k2) / (k1 k2).
 //
-// One law, one place: the plant (SlsMechanics), the estimator's exact discretisation
-// (DiscreteSls) and the describing-function linearisation all use these functions.
+// One law, one place: the plant (SlsMechanics), attached Maxwell arms (MaxwellBranch), the
+// estimator (total_force, and DiscreteSls, its exact discretisation) and the
+// describing-function linearisation all use these functions.
 namespace tcpmsim {
 
 struct SlsParameters {
@@ -25,9 +26,18 @@ struct SlsParameters {
 
 namespace sls {
 
+// A Maxwell arm (a spring in series with a dashpot) stretched to x with the dashpot at x_d:
+// its force k (x - x_d), and the rate at which the dashpot gives, dx_d/dt = (k/c) (x - x_d).
+inline double arm_force(double stiffness, double deflection, double dashpot) {
+  return stiffness * (deflection - dashpot);
+}
+inline double arm_rate(double stiffness, double damping, double deflection, double dashpot) {
+  return stiffness / damping * (deflection - dashpot);
+}
+
 // F_l = k1 x + k2 (x - x_d)
 inline double elastic_force(const SlsParameters& p, double deflection, double dashpot) {
-  return p.k1 * deflection + p.k2 * (deflection - dashpot);
+  return p.k1 * deflection + arm_force(p.k2, deflection, dashpot);
 }
 
 // (7.5): F = F_l + F_T + phi_0
@@ -37,18 +47,23 @@ inline double total_force(const SlsParameters& p, double elastic_force, double t
 
 // dx_d/dt = (k2/c) (x - x_d)
 inline double dashpot_rate(const SlsParameters& p, double deflection, double dashpot) {
-  return p.k2 / p.damping * (deflection - dashpot);
+  return arm_rate(p.k2, p.damping, deflection, dashpot);
 }
 
-// (7.5) solved for x when F is imposed: F = (k1 + k2) x - k2 x_d + F_T + phi_0.
+// (7.5) solved for x when F is imposed, with further terms S x + B attached in parallel
+// (models/effects; none: S = B = 0): F = (k1 + k2 + S) x - k2 x_d + F_T + phi_0 + B.
 inline double deflection_at_force(const SlsParameters& p, double force, double thermal_force,
-                                  double dashpot) {
-  return (force - thermal_force - p.force_offset + p.k2 * dashpot) / (p.k1 + p.k2);
+                                  double dashpot, double attached_stiffness = 0.0,
+                                  double attached_force = 0.0) {
+  return (force - thermal_force - p.force_offset - attached_force + p.k2 * dashpot) /
+         (p.k1 + p.k2 + attached_stiffness);
 }
 
-// At rest (dashpot relaxed, x_d = x) under force F: F = k1 x + F_T + phi_0.
-inline double rest_deflection(const SlsParameters& p, double force, double thermal_force) {
-  return (force - thermal_force - p.force_offset) / p.k1;
+// At rest (every dashpot relaxed, x_d = x) under force F, the attached terms as they are at
+// rest: F = (k1 + S) x + F_T + phi_0 + B.
+inline double rest_deflection(const SlsParameters& p, double force, double thermal_force,
+                              double attached_stiffness = 0.0, double attached_force = 0.0) {
+  return (force - thermal_force - p.force_offset - attached_force) / (p.k1 + attached_stiffness);
 }
 
 // The thermal force that holds force F at deflection x with the dashpot relaxed.
