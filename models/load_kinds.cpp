@@ -5,6 +5,7 @@
 
 #include "models/hanging_mass.h"
 #include "models/imposed_load.h"
+#include "models/joint_load.h"
 #include "models/muscle.h"
 #include "models/sensor.h"
 
@@ -92,8 +93,8 @@ struct RestTerms {
 };
 
 // The deflection at which `weight` hangs still from muscles at rest: the static balance of (7.5)
-// with relaxed dashpots, m g = sum (k1 x + F_T(0) + phi_0). Attached terms carry no force at
-// rest here (a Maxwell arm carries none; an effect with a rest stiffness would need adding).
+// with relaxed dashpots, m g = sum (k1 x + F_T(0) + phi_0). Attached terms must carry no force
+// at rest (a Maxwell arm carries none); a muscle with one that does is refused by the caller.
 template <typename Terms>
 double static_balance(double weight, const std::vector<Held>& muscles, Terms terms) {
   double net = weight, stiffness = 0.0;
@@ -107,6 +108,15 @@ double static_balance(double weight, const std::vector<Held>& muscles, Terms ter
 
 void build_hanging_mass(const ConfigNode& node, const std::string& name, ScenarioBuilder& build) {
   const auto muscles = held_muscles(node, build);
+  if (const auto initial = node.find("initial_deflection");
+      initial && initial->is_scalar() && initial->as_text() == "equilibrium") {
+    for (const auto& muscle : muscles) {
+      if (muscle.facts.rest_force_attached) {
+        initial->fail("the equilibrium is found from k1, F_T and phi_0 alone, but " + muscle.name +
+                      " has an effect that carries force at rest; give the deflection");
+      }
+    }
+  }
   const auto equilibrium = [muscles](double weight) {
     return static_balance(weight, muscles, [](const Held& muscle) {
       return RestTerms{muscle.facts.initial_thermal_force, muscle.facts.mechanics.force_offset,
@@ -175,6 +185,7 @@ void register_load_kinds(KindRegistry& kinds) {
          "load"},
         {example("load: {type: hanging_mass, mass: 35 g, initial_deflection: 20 mm}\n"), "load"}},
        InstanceBuilder(build_hanging_mass)});
+  register_joint_load(kinds, kLoadCategory);
 }
 
 }  // namespace tcpmsim

@@ -53,7 +53,7 @@ ThermalForm build_physical(const ConfigNode& muscle, const std::string& name,
   return {initial, in_run, true, true};
 }
 
-void build_effects(const ConfigNode& muscle, const std::string& name, const MuscleFacts& facts,
+void build_effects(const ConfigNode& muscle, const std::string& name, MuscleFacts& facts,
                    ScenarioBuilder& build) {
   const auto effects = muscle.find("effects");
   if (!effects) return;
@@ -95,7 +95,7 @@ void build_muscle(const ConfigNode& muscle, const std::string& name, ScenarioBui
   auto& mechanics = system.add(SlsMechanics::from_config(name, muscle.at("mechanics")));
   system.connect(mechanics, "thermal_force", name + ".thermal_force");
   for (const char* port : {"deflection", "force", "attached_stiffness", "attached_force",
-                           "attached_rest_stiffness", "attached_rest_force"})
+                           "attached_rest_stiffness", "attached_rest_force", "cable_deflection"})
     system.export_input(name + "." + port, mechanics, port);
 
   const ConfigNode resistance = muscle.at("resistance");
@@ -118,8 +118,9 @@ void build_muscle(const ConfigNode& muscle, const std::string& name, ScenarioBui
   facts.initial_thermal_force = thermal.initial_thermal_force;
   facts.initial_thermal_force_in = thermal.initial_thermal_force_in;
   facts.heat_balance = thermal.heat_balance;
+  facts.reports_temperature = thermal.reports_temperature;
+  build_effects(muscle, name, facts, build);
   build.publish(name, facts);
-  build_effects(muscle, name, *build.facts<MuscleFacts>(name), build);
 }
 
 }  // namespace

@@ -15,9 +15,11 @@ namespace tcpmsim {
 // mechanics (7.5)-(7.6), its coil impedance (6.3)-(6.5), and any effects attached to it.
 //
 // The instance's ports, for whatever drives and holds it:
-//   inputs  <name>.power (heating, W), <name>.deflection or <name>.force (what the load imposes)
+//   inputs  <name>.power (heating, W), <name>.deflection, <name>.force or
+//           <name>.cable_deflection (what the load imposes; a cable lets the muscle go slack)
 //   outputs <name>.force, .deflection, .thermal_force, .temperature (if known), .resistance,
-//           .inductance (or .inductance_measure), ...
+//           .inductance (or .inductance_measure), .stiffness and .rest_stiffness (dF/dx, 0 when
+//           slack; ports only), ...
 // and, for attached effects, <name>.attached_stiffness and <name>.attached_force (force terms
 // affine in the deflection, see SlsMechanics), <name>.attached_rest_stiffness and
 // <name>.attached_rest_force (the same at rest), the output <name>.rest_deflection, and
@@ -31,7 +33,11 @@ struct MuscleFacts {
   double initial_thermal_force = 0.0;  // F_T at t = 0 as built [N]
   // F_T at t = 0 in a run (its parameters and signals as the context has them).
   std::function<double(const Context&)> initial_thermal_force_in;
-  bool heat_balance = false;  // a thermal node whose heat balance takes attached terms
+  bool heat_balance = false;         // a thermal node whose heat balance takes attached terms
+  bool reports_temperature = false;  // <name>.temperature exists
+  // An attached effect carries force at rest (a parallel spring): a static balance found from
+  // k1, F_T and phi_0 alone would be wrong.
+  bool rest_force_attached = false;
 };
 
 // What a thermal-force part kind builds and reports.
@@ -49,7 +55,7 @@ using ThermalFormBuilder = std::function<ThermalForm(
 struct MuscleAttachment {
   std::string muscle;  // the instance
   std::string group;   // the effect's own group, "<muscle>/<effect name>"
-  const MuscleFacts* facts;
+  MuscleFacts* facts;  // an effect may add to them (rest_force_attached)
 };
 // Builds an effect from its section under the muscle's `effects`.
 using EffectBuilder = std::function<void(const ConfigNode& section, const MuscleAttachment& muscle,

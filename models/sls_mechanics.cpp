@@ -1,5 +1,7 @@
 #include "models/sls_mechanics.h"
 
+#include <algorithm>
+
 namespace tcpmsim {
 
 SlsMechanics::SlsMechanics(std::string group, SlsParameters defaults,
@@ -31,7 +33,9 @@ std::vector<OutputDeclaration> SlsMechanics::outputs() const {
   return {{"force", "N"},
           {"deflection", "m"},
           {"elastic_force", "N"},
-          {"rest_deflection", "m", false, false}};
+          {"rest_deflection", "m", false, false},
+          {"stiffness", "N/m", false, false},
+          {"rest_stiffness", "N/m", false, false}};
 }
 
 std::vector<InputDeclaration> SlsMechanics::inputs() const {
@@ -41,13 +45,17 @@ std::vector<InputDeclaration> SlsMechanics::inputs() const {
           {"attached_stiffness", true, false, InputArity::many},
           {"attached_force", true, false, InputArity::many},
           {"attached_rest_stiffness", true, false, InputArity::many},
-          {"attached_rest_force", true, false, InputArity::many}};
+          {"attached_rest_force", true, false, InputArity::many},
+          {"cable_deflection", true, false, InputArity::optional}};
 }
 
 std::string SlsMechanics::check_connections() const {
-  if (source_count(kDeflection) + source_count(kForce) != 1)
-    return "needs either its deflection or its force imposed (connected), not " +
-           std::string(source_count(kDeflection) > 0 ? "both" : "neither");
+  const int held =
+      source_count(kDeflection) + source_count(kForce) + source_count(kCableDeflection);
+  if (held != 1)
+    return "needs one of its deflection, its force or a cable's deflection imposed (connected), "
+           "not " +
+           std::string(held > 1 ? "several" : "none");
   const int terms = source_count(kAttachedStiffness);
   if (source_count(kAttachedForce) != terms || source_count(kAttachedRestStiffness) != terms ||
       source_count(kAttachedRestForce) != terms)
@@ -55,8 +63,17 @@ std::string SlsMechanics::check_connections() const {
   return {};
 }
 
+// The deflection at which the muscle carries no force (7.5), at its present state.
+double SlsMechanics::free_deflection(const Evaluation& evaluation) const {
+  return sls::deflection_at_force(run_parameters(evaluation), 0.0, input(evaluation, kThermalForce),
+                                  state(evaluation, 0), input_sum(evaluation, kAttachedStiffness),
+                                  input_sum(evaluation, kAttachedForce));
+}
+
 double SlsMechanics::deflection(const Evaluation& evaluation) const {
   if (deflection_imposed()) return input(evaluation, kDeflection);
+  if (held_by_cable())
+    return std::max(input(evaluation, kCableDeflection), free_deflection(evaluation));
   return sls::deflection_at_force(run_parameters(evaluation), input(evaluation, kForce),
                                   input(evaluation, kThermalForce), state(evaluation, 0),
                                   input_sum(evaluation, kAttachedStiffness),
@@ -65,9 +82,12 @@ double SlsMechanics::deflection(const Evaluation& evaluation) const {
 
 double SlsMechanics::rest_deflection(const Evaluation& evaluation) const {
   if (deflection_imposed()) return input(evaluation, kDeflection);
-  return sls::rest_deflection(
-      run_parameters(evaluation), input(evaluation, kForce), input(evaluation, kThermalForce),
+  const double force = held_by_cable() ? 0.0 : input(evaluation, kForce);
+  const double rest = sls::rest_deflection(
+      run_parameters(evaluation), force, input(evaluation, kThermalForce),
       input_sum(evaluation, kAttachedRestStiffness), input_sum(evaluation, kAttachedRestForce));
+  // Held by a cable: at the cable's deflection if that leaves it taut at rest, else slack.
+  return held_by_cable() ? std::max(input(evaluation, kCableDeflection), rest) : rest;
 }
 
 void SlsMechanics::initialize(const Evaluation& evaluation, std::span<double> own_state) const {
@@ -87,6 +107,13 @@ void SlsMechanics::compute_outputs(const Evaluation& evaluation) const {
   set_output(evaluation, kForceOutput, force);
   // An imposed deflection is its own rest deflection; only an imposed force needs solving.
   set_output(evaluation, kRestDeflection, deflection_imposed() ? x : rest_deflection(evaluation));
+  // Slack: the muscle is longer than the cable's path, at its force-free deflection.
+  const bool slack = held_by_cable() && x > input(evaluation, kCableDeflection);
+  const double attached = has_attachments() ? input_sum(evaluation, kAttachedStiffness) : 0.0;
+  const double attached_rest =
+      has_attachments() ? input_sum(evaluation, kAttachedRestStiffness) : 0.0;
+  set_output(evaluation, kStiffness, slack ? 0.0 : p.k1 + p.k2 + attached);
+  set_output(evaluation, kRestStiffness, slack ? 0.0 : p.k1 + attached_rest);
 }
 
 void SlsMechanics::compute_derivatives(const Evaluation& evaluation, double* derivatives) const {
@@ -98,6 +125,8 @@ void SlsMechanics::compute_derivatives(const Evaluation& evaluation, double* der
 Dependencies SlsMechanics::derivative_dependencies(int) const {
   // With x imposed the dashpot does not see the thermal force; with F imposed, x (7.5) does.
   if (deflection_imposed()) return {{0}, {kDeflection}};
+  if (held_by_cable())
+    return {{0}, {kThermalForce, kCableDeflection, kAttachedStiffness, kAttachedForce}};
   return {{0}, {kThermalForce, kForce, kAttachedStiffness, kAttachedForce}};
 }
 

@@ -12,9 +12,16 @@ namespace tcpmsim {
 // dashpot extension x_d as its state.
 //
 // Causality follows what the muscle is attached to, found when the system is assembled: with
-// its "deflection" input connected (an imposed deflection, a mass, a joint) x is an input and F
-// an output; with its "force" input connected (an imposed force) F is the input and x follows
-// algebraically from (7.5). Exactly one of the two must be connected.
+// its "deflection" input connected (an imposed deflection, a mass) x is an input and F an
+// output; with its "force" input connected (an imposed force) F is the input and x follows
+// algebraically from (7.5). With its "cable_deflection" input connected (a joint that pulls
+// through a cable or tendon) the deflection is imposed as long as the muscle is taut, but a
+// cable cannot push: where the imposed deflection would put the muscle in compression (F < 0),
+// the muscle goes slack at its force-free deflection instead, longer than the cable's path
+// (the cable goes loose),
+//     x = max(x_cable, x_free),   F(x_free) = 0 (deflection_at_force with F = 0),
+// so F = max(F(x_cable), 0) (F rises with x: k1 + k2 + S > 0). Exactly one of the three must be
+// connected.
 //
 // Further force terms attach without the SLS knowing them (models/effects). Each publishes its
 // force as affine in the deflection at its present state, F_j = s_j x + b_j, through the
@@ -34,9 +41,21 @@ class SlsMechanics final : public ParametricComponent<SlsParameters> {
     kAttachedStiffness,
     kAttachedForce,
     kAttachedRestStiffness,
-    kAttachedRestForce
+    kAttachedRestForce,
+    kCableDeflection
   };
-  enum Output { kForceOutput, kDeflectionOutput, kElasticForce, kRestDeflection };
+  // Besides the recorded force, deflection and elastic force, port-only outputs: the rest
+  // deflection (above), and the small-signal stiffness dF/dx the muscle presents to what holds
+  // it, 0 while slack: "stiffness" at its present state (k1 + k2 + S: the instantaneous,
+  // elastic response) and "rest_stiffness" once its dashpots have relaxed (k1 + S_rest).
+  enum Output {
+    kForceOutput,
+    kDeflectionOutput,
+    kElasticForce,
+    kRestDeflection,
+    kStiffness,
+    kRestStiffness
+  };
 
   SlsMechanics(std::string group, SlsParameters defaults,
                ParameterBindings<SlsParameters> bindings = {});
@@ -59,10 +78,13 @@ class SlsMechanics final : public ParametricComponent<SlsParameters> {
 
   // Whether the deflection is imposed (known once assembled).
   bool deflection_imposed() const { return source_count(kDeflection) > 0; }
+  // Whether it is held through a cable that cannot push (known once assembled).
+  bool held_by_cable() const { return source_count(kCableDeflection) > 0; }
 
  private:
   double deflection(const Evaluation& evaluation) const;
   double rest_deflection(const Evaluation& evaluation) const;
+  double free_deflection(const Evaluation& evaluation) const;
   bool has_attachments() const { return source_count(kAttachedStiffness) > 0; }
 };
 

@@ -169,5 +169,5 @@ load: {type: force, force: 0.4 N}
   // The standard registry does not know it.
   CHECK_THROWS_WITH(scenario_from_text(yaml),
                     Catch::Contains("muscle.effects[0].type: expected one of maxwell_branch, "
-                                    "free_convection, got 'parallel_spring'"));
+                                    "free_convection, thermal_softening, got 'parallel_spring'"));
 }

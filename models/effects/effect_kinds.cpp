@@ -2,11 +2,21 @@
 
 #include "models/effects/free_convection.h"
 #include "models/effects/maxwell_branch.h"
+#include "models/effects/thermal_softening.h"
 #include "models/muscle.h"
 
 namespace tcpmsim {
 
 namespace {
+
+// A force term's four ports (its force affine in the deflection, now and at rest) into the
+// muscle's fan-ins (SlsMechanics).
+void connect_force_term(SystemBuilder& system, const MuscleAttachment& muscle) {
+  system.connect(muscle.muscle + ".attached_stiffness", muscle.group + ".stiffness");
+  system.connect(muscle.muscle + ".attached_force", muscle.group + ".offset_force");
+  system.connect(muscle.muscle + ".attached_rest_stiffness", muscle.group + ".rest_stiffness");
+  system.connect(muscle.muscle + ".attached_rest_force", muscle.group + ".rest_force");
+}
 
 void attach_maxwell_branch(const ConfigNode& section, const MuscleAttachment& muscle,
                            ScenarioBuilder& build) {
@@ -14,10 +24,7 @@ void attach_maxwell_branch(const ConfigNode& section, const MuscleAttachment& mu
   auto& branch = system.add(MaxwellBranch::from_config(muscle.group, section));
   system.connect(branch, "deflection", muscle.muscle + ".deflection");
   system.connect(branch, "rest_deflection", muscle.muscle + ".rest_deflection");
-  system.connect(muscle.muscle + ".attached_stiffness", muscle.group + ".stiffness");
-  system.connect(muscle.muscle + ".attached_force", muscle.group + ".offset_force");
-  system.connect(muscle.muscle + ".attached_rest_stiffness", muscle.group + ".rest_stiffness");
-  system.connect(muscle.muscle + ".attached_rest_force", muscle.group + ".rest_force");
+  connect_force_term(system, muscle);
 }
 
 void attach_free_convection(const ConfigNode& section, const MuscleAttachment& muscle,
@@ -32,6 +39,21 @@ void attach_free_convection(const ConfigNode& section, const MuscleAttachment& m
   system.connect(convection, "temperature", muscle.muscle + ".temperature");
   system.connect(convection, "ambient_temperature", muscle.muscle + ".ambient_temperature");
   system.connect(muscle.muscle + ".heat_loss", muscle.group + ".heat_loss");
+}
+
+void attach_thermal_softening(const ConfigNode& section, const MuscleAttachment& muscle,
+                              ScenarioBuilder& build) {
+  if (!muscle.facts->reports_temperature) {
+    section.fail(
+        "a temperature-dependent stiffness needs the muscle's temperature: use the physical "
+        "thermal form, or give the reduced form's thermal_force.force_per_kelvin");
+  }
+  SystemBuilder& system = build.system();
+  auto& spring = system.add(ThermalSoftening::from_config(muscle.group, section));
+  system.connect(spring, "temperature", muscle.muscle + ".temperature");
+  system.connect(spring, "deflection", muscle.muscle + ".deflection");
+  connect_force_term(system, muscle);
+  muscle.facts->rest_force_attached = true;
 }
 
 }  // namespace
@@ -65,6 +87,17 @@ load: {type: deflection, deflection: 20 mm}
 )",
                "muscle.effects[0]"}},
              EffectBuilder(attach_free_convection)});
+  kinds.add({kEffectCategory,
+             "thermal_softening",
+             "a spring in parallel with the SLS whose stiffness falls with temperature, "
+             "s = max(0, s_ref (1 + alpha (T - T_ref))): a heated polymer softens",
+             {{example_muscle_scenario(
+                   "  effects:\n    - {type: thermal_softening, name: softening, "
+                   "reference_stiffness: 5 mN/mm, temperature_coefficient: -0.01 1/K, "
+                   "reference_temperature: 23 degC}\n",
+                   ""),
+               "muscle.effects[0]"}},
+             EffectBuilder(attach_thermal_softening)});
 }
 
 }  // namespace tcpmsim
