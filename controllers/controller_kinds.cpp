@@ -1,5 +1,7 @@
 #include "controllers/controller_kinds.h"
 
+#include "controllers/controller_facts.h"
+#include "controllers/joint_controller_kind.h"
 #include "controllers/joule_drive.h"
 #include "controllers/muscle_drive.h"
 #include "controllers/pid_controller.h"
@@ -10,31 +12,6 @@
 namespace tcpmsim {
 
 namespace {
-
-inline constexpr const char* kDriveCategory = "drive";
-inline constexpr const char* kEstimatorCategory = "estimator";
-inline constexpr const char* kControllerCategory = "controller";
-
-// What a Muscle Drive tells the estimator and controller built after it.
-struct MuscleDriveFacts {
-  double period;       // of the PWM and of every sample taken with it [s]
-  bool takes_command;  // no power signal: a controller's command drives it
-  ConfigNode section;
-};
-
-// What an estimator tells the controller built after it.
-struct EstimatorFacts {
-  std::string drive;
-};
-
-// A sampled component's period follows its drive's PWM frequency in every run.
-void follow_pwm(ScenarioBuilder& build, const std::string& sampled, const std::string& drive) {
-  const std::string frequency = drive + ".pwm_frequency";
-  build.system().derive(
-      sampled + ".sample_period",
-      [frequency](const Context& context) { return 1.0 / context.parameter(frequency); },
-      "1 / " + frequency);
-}
 
 void build_joule_drive(const ConfigNode& node, const std::string& name, ScenarioBuilder& build) {
   node.declare({"muscle"});
@@ -66,15 +43,8 @@ void build_muscle_drive(const ConfigNode& node, const std::string& name, Scenari
       if (!system.is_connected(name + ".power_command")) node.at("power");  // "missing power"
     });
   }
-  build.publish(name, MuscleDriveFacts{1.0 / drive.defaults().pwm_frequency, takes_command, node});
-}
-
-// The Muscle Drive self-sensing reads, or a located error.
-const MuscleDriveFacts& sensing_drive(const ConfigNode& node, const std::string& drive,
-                                      const ScenarioBuilder& build) {
-  const auto* facts = build.facts<MuscleDriveFacts>(drive);
-  if (!facts) node.fail("self-sensing needs the Muscle Drive (drive.model: muscle_drive)");
-  return *facts;
+  build.publish(name, MuscleDriveFacts{1.0 / drive.defaults().pwm_frequency, takes_command, node,
+                                       muscle.name});
 }
 
 void build_estimator(const ConfigNode& node, const std::string& name, ScenarioBuilder& build) {
@@ -103,8 +73,7 @@ void build_controller(const ConfigNode& node, const std::string& name, ScenarioB
   const auto& estimator = build.linked(node, "estimator", kEstimatorCategory);
   const std::string drive = build.facts<EstimatorFacts>(estimator.name)->drive;
   const MuscleDriveFacts& facts = sensing_drive(node, drive, build);
-  if (!facts.takes_command)
-    facts.section.at("power").fail("the power comes from the controller; remove drive.power");
+  check_takes_command(facts);
   SystemBuilder& system = build.system();
   auto& controller =
       system.add(PidController::from_config(name, node, facts.period, build.signals()));
@@ -157,6 +126,26 @@ load: {type: deflection, deflection: 20 mm}
 
 }  // namespace
 
+void follow_pwm(ScenarioBuilder& build, const std::string& sampled, const std::string& drive) {
+  const std::string frequency = drive + ".pwm_frequency";
+  build.system().derive(
+      sampled + ".sample_period",
+      [frequency](const Context& context) { return 1.0 / context.parameter(frequency); },
+      "1 / " + frequency);
+}
+
+const MuscleDriveFacts& sensing_drive(const ConfigNode& node, const std::string& drive,
+                                      const ScenarioBuilder& build) {
+  const auto* facts = build.facts<MuscleDriveFacts>(drive);
+  if (!facts) node.fail("self-sensing needs the Muscle Drive (drive.model: muscle_drive)");
+  return *facts;
+}
+
+void check_takes_command(const MuscleDriveFacts& facts) {
+  if (!facts.takes_command)
+    facts.section.at("power").fail("the power comes from the controller; remove drive.power");
+}
+
 void register_controller_kinds(KindRegistry& kinds) {
   kinds.add_category({kDriveCategory, "drives", "model", "joule",
                       "what heats a muscle (muscle: <name>; the only muscle by default)", "", 30});
@@ -164,7 +153,7 @@ void register_controller_kinds(KindRegistry& kinds) {
                       "self-sensing of a muscle from its Muscle Drive's L* (drive: <name>; the "
                       "only drive by default)",
                       "", 40});
-  kinds.add_category({kControllerCategory, "controllers", "", "",
+  kinds.add_category({kControllerCategory, "controllers", "type", "pid",
                       "closed-loop control through an estimator (estimator: <name>; the only one "
                       "by default); it commands that estimator's drive",
                       "", 50});
@@ -195,6 +184,7 @@ void register_controller_kinds(KindRegistry& kinds) {
              "saturation (7.7)-(7.9), sampled with the drive's PWM",
              {{kSelfSensingScenario, "controller"}},
              InstanceBuilder(build_controller)});
+  register_joint_angle_controller(kinds);
 }
 
 }  // namespace tcpmsim

@@ -43,6 +43,11 @@ double DiscretePid::saturate(double demand) const {
 }
 
 DiscretePid::Step DiscretePid::update(double reference, double reference_slope, double estimate) {
+  return update(reference, reference_slope, estimate, settings_.power_min, settings_.power_max);
+}
+
+DiscretePid::Step DiscretePid::update(double reference, double reference_slope, double estimate,
+                                      double lower, double upper) {
   const auto& g = settings_.gains;
   const bool integrating = std::isfinite(g.integral_time);
   const double error = reference - estimate;
@@ -67,7 +72,7 @@ DiscretePid::Step DiscretePid::update(double reference, double reference_slope, 
   const double integral_term = integrating ? integral_ / g.integral_time : 0.0;
   const double demand =
       g.proportional * (error + g.derivative_time * derivative + integral_term);  // (7.7)
-  const double command = saturate(demand);                                        // (7.9)
+  const double command = std::max(lower, std::min(upper, demand));                // (7.9)
   if (integrating) {
     const double z =
         settings_.anti_windup ? error - (demand - command) / g.proportional : error;  // (7.8)
@@ -115,25 +120,13 @@ PidController::PidController(std::string group, Target target, PidSettings setti
   if (!reference_) throw std::invalid_argument("PID: no reference signal");
 }
 
-std::unique_ptr<PidController> PidController::from_config(const std::string& group,
-                                                          const ConfigNode& node, double period,
-                                                          const SignalContext& signals) {
+void read_pid_settings(const ConfigNode& node, std::string_view gain_unit, PidSettings& s,
+                       ParameterBindings<PidSettings>& bind) {
   using P = PidSettings;
-  node.declare({"target", "reference", "gains", "power_limits", "anti_windup", "derivative_on",
-                "initial_power"});
-  const Target target = node.choice("target", {"deflection", "force"}) == "force"
-                            ? Target::force
-                            : Target::deflection;
-  const char* unit = target == Target::force ? "N" : "m";
-  auto reference = read_signal(node.at("reference"), unit, signals);
-
-  P s;
-  ParameterBindings<P> bind;
   const ConfigNode gains = node.at("gains");
   gains.declare({"proportional", "integral_time", "derivative_time"});
   bind.quantity(
-      gains, "proportional", target == Target::force ? "W/N" : "W/m", {}, s,
-      [](P& v) -> double& { return v.gains.proportional; },
+      gains, "proportional", gain_unit, {}, s, [](P& v) -> double& { return v.gains.proportional; },
       [](double value) {
         return value == 0.0 ? std::string("expected a non-zero gain ((7.8) divides by it)")
                             : std::string();
@@ -153,6 +146,23 @@ std::unique_ptr<PidController> PidController::from_config(const std::string& gro
   s.derivative = node.choice_or("derivative_on", {"error", "measurement"}, "error") == "measurement"
                      ? PidSettings::Derivative::measurement
                      : PidSettings::Derivative::error;
+}
+
+std::unique_ptr<PidController> PidController::from_config(const std::string& group,
+                                                          const ConfigNode& node, double period,
+                                                          const SignalContext& signals) {
+  using P = PidSettings;
+  node.declare({"target", "reference", "gains", "power_limits", "anti_windup", "derivative_on",
+                "initial_power"});
+  const Target target = node.choice("target", {"deflection", "force"}) == "force"
+                            ? Target::force
+                            : Target::deflection;
+  const char* unit = target == Target::force ? "N" : "m";
+  auto reference = read_signal(node.at("reference"), unit, signals);
+
+  P s;
+  ParameterBindings<P> bind;
+  read_pid_settings(node, target == Target::force ? "W/N" : "W/m", s, bind);
   if (const auto initial = node.find("initial_power")) {
     const double power = initial->as_quantity("W");
     if (power < s.power_min || power > s.power_max)

@@ -71,6 +71,10 @@ class DiscretePid {
   DiscretePid(PidSettings settings, double period);
   // reference_slope is dr/dt at t_k (used when derivative == error).
   Step update(double reference, double reference_slope, double estimate);
+  // The same with the saturation (7.9) and the back-calculation (7.8) against limits that hold
+  // for this sample only (a push-pull pair whose headroom moves with its co-contraction).
+  Step update(double reference, double reference_slope, double estimate, double lower,
+              double upper);
   void reset();
   bool started() const { return started_; }
   double integral() const { return integral_; }  // I[k+1] after the last update [unit of e * s]
@@ -85,6 +89,13 @@ class DiscretePid {
   double integral_ = 0.0;
   double previous_estimate_ = 0.0;
 };
+
+// The keys of the discrete law: gains {proportional (in gain_unit), integral_time,
+// derivative_time (optional, 0 s)}, power_limits [P_min, P_max], and optional anti_windup
+// (true) and derivative_on (error | measurement; error). Shared by every controller built on
+// DiscretePid.
+void read_pid_settings(const ConfigNode& node, std::string_view gain_unit, PidSettings& settings,
+                       ParameterBindings<PidSettings>& bindings);
 
 // A sampled PID controller of the muscle's deflection or force through self-sensing (thesis
 // 7.2.4). Input "estimate" (sampled): x^ or F^ from the estimator of the same instant. Outputs
