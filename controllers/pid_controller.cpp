@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
-#include <tuple>
 
 #include "sim/time_grid.h"
 
@@ -36,10 +35,6 @@ DiscretePid::DiscretePid(PidSettings settings, double period)
         *settings_.initial_power > settings_.power_max)
       throw std::invalid_argument("PID: the initial power lies outside the power limits");
   }
-}
-
-double DiscretePid::saturate(double demand) const {
-  return std::max(settings_.power_min, std::min(settings_.power_max, demand));  // (7.9)
 }
 
 DiscretePid::Step DiscretePid::update(double reference, double reference_slope, double estimate) {
@@ -135,13 +130,8 @@ void read_pid_settings(const ConfigNode& node, std::string_view gain_unit, PidSe
                 [](P& v) -> double& { return v.gains.integral_time; });
   bind.quantity_or(gains, "derivative_time", "s", 0.0, ValueCheck::non_negative(), s,
                    [](P& v) -> double& { return v.gains.derivative_time; });
-  const ConfigNode limits = node.at("power_limits");
-  std::tie(s.power_min, s.power_max) =
-      node.interval("power_limits", "W", ValueCheck::non_negative());
-  bind.bind(limits.parameter_path() + "[0]", "W", ValueCheck::non_negative(),
-            bind.member(&P::power_min));
-  bind.bind(limits.parameter_path() + "[1]", "W", ValueCheck::non_negative(),
-            bind.member(&P::power_max));
+  bind.interval(node, "power_limits", "W", ValueCheck::non_negative(), s,
+                bind.member(&P::power_min), bind.member(&P::power_max));
   s.anti_windup = node.boolean_or("anti_windup", true);
   s.derivative = node.choice_or("derivative_on", {"error", "measurement"}, "error") == "measurement"
                      ? PidSettings::Derivative::measurement
@@ -181,10 +171,7 @@ std::vector<OutputDeclaration> PidController::outputs() const {
 }
 
 std::vector<ParameterDeclaration> PidController::parameters() const {
-  auto declared = SampledComponent::parameters();
-  for (auto& parameter : bindings_.declarations(defaults_))
-    declared.push_back(std::move(parameter));
-  return declared;
+  return with_period(bindings_.declarations(defaults_));
 }
 
 std::vector<SignalDeclaration> PidController::signals() const {

@@ -80,7 +80,6 @@ class DiscretePid {
   double integral() const { return integral_; }  // I[k+1] after the last update [unit of e * s]
   const PidSettings& settings() const { return settings_; }
   double period() const { return period_; }
-  double saturate(double demand) const;
 
  private:
   PidSettings settings_;

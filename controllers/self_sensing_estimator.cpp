@@ -132,10 +132,7 @@ std::vector<InputDeclaration> SelfSensingEstimator::inputs() const {
 }
 
 std::vector<ParameterDeclaration> SelfSensingEstimator::parameters() const {
-  auto declared = SampledComponent::parameters();
-  for (auto& parameter : bindings_.declarations(defaults_))
-    declared.push_back(std::move(parameter));
-  return declared;
+  return with_period(bindings_.declarations(defaults_));
 }
 
 std::unique_ptr<RunState> SelfSensingEstimator::create_run_state(const RunSetup& setup) const {

@@ -80,13 +80,8 @@ std::unique_ptr<CoilSpringInductance> CoilSpringInductance::from_config(
   bind.quantity(node, "coil_radius", "m", ValueCheck::positive(), p, bind.member(&P::coil_radius));
   bind.quantity(node, "wire_diameter", "m", ValueCheck::positive(), p,
                 bind.member(&P::wire_diameter));
-  const ConfigNode range = node.at("operating_range");
-  std::tie(p.shortest_length, p.longest_length) =
-      node.interval("operating_range", "m", ValueCheck::positive());
-  bind.bind(range.parameter_path() + "[0]", "m", ValueCheck::positive(),
-            bind.member(&P::shortest_length));
-  bind.bind(range.parameter_path() + "[1]", "m", ValueCheck::positive(),
-            bind.member(&P::longest_length));
+  bind.interval(node, "operating_range", "m", ValueCheck::positive(), p,
+                bind.member(&P::shortest_length), bind.member(&P::longest_length));
   bind.quantity_or(node, "preload_length", "m", initial_length, ValueCheck::positive(), p,
                    bind.member(&P::preload_length));
   return std::make_unique<CoilSpringInductance>(

@@ -126,8 +126,7 @@ std::unique_ptr<Signal> make_staircase(const std::vector<double>& levels, double
 double read_phase(const ConfigNode& node, std::string_view key, RandomStream& stream,
                   bool random_by_default, Declared& declared) {
   if (auto phase = node.find(key)) {
-    if (phase->is_scalar() && phase->as_text() == "random")
-      return stream.uniform(0.0, 2.0 * std::numbers::pi);
+    if (phase->is_word("random")) return stream.uniform(0.0, 2.0 * std::numbers::pi);
     return declared.add(*phase, phase->as_quantity("rad"), "rad");
   }
   return random_by_default ? stream.uniform(0.0, 2.0 * std::numbers::pi) : 0.0;

@@ -4,6 +4,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "sim/config/config_node.h"
@@ -53,6 +54,20 @@ class ParameterBindings {
                      P& values, Field field, ExtraCheck extra = {}) {
     return store(node, node.as_quantity(unit, check), unit, check, values, std::move(field),
                  std::move(extra));
+  }
+
+  // Reads node[key], a pair [low, high] in `unit` with low < high, stores the ends through `low`
+  // and `high` and binds them as the parameters key[0] and key[1].
+  std::pair<double, double> interval(const ConfigNode& node, std::string_view key,
+                                     std::string_view unit, const ValueCheck& check, P& values,
+                                     Field low, Field high) {
+    const auto ends = node.interval(key, unit, check);
+    low(values) = ends.first;
+    high(values) = ends.second;
+    const std::string path = node.at(key).parameter_path();
+    bind(path + "[0]", std::string(unit), check, std::move(low));
+    bind(path + "[1]", std::string(unit), check, std::move(high));
+    return ends;
   }
 
   // Adds the bindings of a part of P (a nested struct) reached through `part`.

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "sim/component.h"
+#include "sim/context.h"
 #include "sim/parameter_bindings.h"
 
 namespace tcpmsim {
@@ -28,6 +29,15 @@ class ParametricComponent : public Component {
   }
   // The parameters as built (a run context may change the bound ones).
   const P& defaults() const { return defaults_; }
+  // P as `context` sets it, before a run starts (for a rule that derives a parameter of another
+  // component from these).
+  P parameters_in(const Context& context) const {
+    const auto declared = bindings_.declarations(defaults_);
+    std::vector<double> values;
+    values.reserve(declared.size());
+    for (const auto& parameter : declared) values.push_back(context.parameter(parameter.path));
+    return bindings_.assign(defaults_, values);
+  }
 
  protected:
   const P& run_parameters(const Evaluation& evaluation) const {

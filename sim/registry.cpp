@@ -54,6 +54,12 @@ const Kind* KindRegistry::find(std::string_view category, std::string_view name)
   return nullptr;
 }
 
+const Kind& KindRegistry::registered(std::string_view category, std::string_view name) const {
+  if (const Kind* kind = find(category, name)) return *kind;
+  throw std::logic_error("no kind '" + std::string(name) + "' of '" + std::string(category) +
+                         "' is registered");
+}
+
 const Kind& KindRegistry::select(std::string_view category_name, const ConfigNode& node) const {
   const Category& category = this->category(category_name);
   const auto names = kind_names(category_name);
@@ -70,7 +76,7 @@ const Kind& KindRegistry::select(std::string_view category_name, const ConfigNod
   } else {
     name = node.choice_or(category.selector, names, category.default_kind);
   }
-  return *find(category_name, name);
+  return registered(category_name, name);
 }
 
 }  // namespace tcpmsim

@@ -16,7 +16,7 @@ class ScenarioBuilder;
 // What a section of a scenario holds. A top-level category is a kind of instance a scenario
 // may hold any number of ("muscle", "drive"): one under its singular key, named after it
 // (`drive:`), or several under its plural key, named by their keys (`drives: {left: ..,
-// right: ..}`). Top-level categories are built in the order they are registered. Other
+// right: ..}`). Top-level categories are built by increasing `order`. Other
 // categories are parts that a kind reads inside its own section (a muscle's thermal force, its
 // effects; every signal).
 struct Category {
@@ -69,6 +69,9 @@ class KindRegistry {
   std::vector<const Kind*> kinds(std::string_view category) const;  // in registration order
   std::vector<std::string> kind_names(std::string_view category) const;
   const Kind* find(std::string_view category, std::string_view name) const;
+  // The kind, which must be registered (a category's default or scalar kind): std::logic_error
+  // if it is not.
+  const Kind& registered(std::string_view category, std::string_view name) const;
 
   // The kind a section names: its selector read with the category's kinds as the choices (or
   // the default when absent). A located ConfigError for an unknown kind.

@@ -12,6 +12,13 @@ std::vector<ParameterDeclaration> SampledComponent::parameters() const {
   return {{group() + ".sample_period", "s", period_, ValueCheck::positive(), {}}};
 }
 
+std::vector<ParameterDeclaration> SampledComponent::with_period(
+    std::vector<ParameterDeclaration> own) const {
+  auto declared = SampledComponent::parameters();
+  for (auto& parameter : own) declared.push_back(std::move(parameter));
+  return declared;
+}
+
 double SampledComponent::next_breakpoint_after(const Evaluation& evaluation) const {
   return next_grid_instant(evaluation.time, period(evaluation));
 }

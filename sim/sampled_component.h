@@ -24,6 +24,8 @@ class SampledComponent : public Component {
   // state (in the run state). Publishing the held outputs is compute_outputs' job.
   virtual void sample(const Evaluation& evaluation, long index) const = 0;
   double period(const Evaluation& evaluation) const { return parameter(evaluation, 0); }
+  // The period followed by a derived class's own parameters: what its parameters() returns.
+  std::vector<ParameterDeclaration> with_period(std::vector<ParameterDeclaration> own) const;
   // A run's own parameters after the period.
   static std::span<const double> own_parameters(const RunSetup& setup) {
     return setup.parameters.subspan(1);

@@ -105,8 +105,13 @@ Scenario build_scenario(const ConfigNode& root, const KindRegistry& kinds) {
   Scenario scenario;
   scenario.settings = read_settings(root, kinds);
   ScenarioBuilder build(kinds, root, scenario.settings);
-  if (build.instances().empty())
-    root.fail("expected a 'muscle' section (with 'drive' and 'load') or a 'spring' section");
+  if (build.instances().empty()) {
+    std::string sections;
+    for (const Category& category : kinds.categories())
+      if (category.top_level())
+        sections += (sections.empty() ? "" : ", ") + category.name + "/" + category.plural;
+    root.fail("expected at least one instance: a section of " + sections);
+  }
   for (const auto& instance : build.instances())
     kinds.builder<InstanceBuilder> (*instance.kind)(instance.node, instance.name, build);
   build.run_checks();

@@ -8,7 +8,7 @@ std::unique_ptr<Signal> read_signal(const ConfigNode& node, std::string_view si_
   const KindRegistry& kinds = *context.kinds;
   const Category& category = kinds.category(kSignalCategory);
   if (node.is_scalar()) {
-    const Kind& constant = *kinds.find(kSignalCategory, category.scalar_kind);
+    const Kind& constant = kinds.registered(kSignalCategory, category.scalar_kind);
     return kinds.builder<SignalBuilder>(constant)(node, si_unit, context);
   }
   if (!node.is_map()) node.fail("expected a quantity or a signal mapping with a 'type'");

@@ -104,8 +104,12 @@ TEST_CASE("The SLS linearisation at imposed force is the plant law's own derivat
                                                deflection(thermal - h_thermal, dashpot)) /
                                               (2 * h_thermal))
                                            .epsilon(1e-8));
-  // And its creep time constant is the SLS's c (k1 + k2) / (k1 k2).
+  // And its creep time constant is the SLS's c (k1 + k2) / (k1 k2); the other entries written
+  // out from (7.5)-(7.6) by hand, independently of the plant functions.
   CHECK(-1.0 / lin.dashpot_from_dashpot == Approx(p.damping * (p.k1 + p.k2) / (p.k1 * p.k2)));
+  CHECK(lin.deflection_from_dashpot == Approx(p.k2 / (p.k1 + p.k2)).epsilon(1e-14));
+  CHECK(lin.deflection_from_thermal == Approx(-1.0 / (p.k1 + p.k2)).epsilon(1e-14));
+  CHECK(lin.dashpot_from_thermal == Approx(-p.k2 / (p.damping * (p.k1 + p.k2))).epsilon(1e-14));
 }
 
 TEST_CASE("The equilibrium power holds the muscle still: (7.1) and (7.5) at rest") {

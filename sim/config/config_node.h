@@ -73,6 +73,10 @@ class ConfigNode {
   bool is_map() const { return node_.IsMap(); }
   bool is_sequence() const { return node_.IsSequence(); }
   bool is_scalar() const { return node_.IsScalar(); }
+  // Whether this is the scalar `word`: a keyword a key takes in place of a value
+  // (initial_deflection: equilibrium, phase: random). A look, not a read: what the key expects
+  // is described by whoever reads it.
+  bool is_word(std::string_view word) const { return node_.IsScalar() && node_.Scalar() == word; }
 
   // Declares the keys this mapping may hold, before reading them. Then a missing required key
   // is matched against misspellings among the *undeclared* keys only (k1 missing does not

@@ -9,6 +9,11 @@ failures=0
 check() {  # check LAYER ALLOWED-PREFIX-REGEX
   local layer=$1 allowed=$2
   local bad
+  if [[ ! -d $layer ]]; then  # a renamed layer must not pass by having nothing to check
+    echo "FAIL: no layer directory $layer"
+    failures=$((failures + 1))
+    return
+  fi
   bad=$(grep -rn --include='*.h' --include='*.cpp' '#include "' "$layer" | grep -vE "#include \"($allowed)/" || true)
   if [[ -n $bad ]]; then
     echo "FAIL: $layer includes outside its layer ($allowed):"
