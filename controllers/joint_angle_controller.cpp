@@ -1,5 +1,6 @@
 #include "controllers/joint_angle_controller.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -86,10 +87,7 @@ std::string JointAngleController::check_connections() const {
 }
 
 std::vector<ParameterDeclaration> JointAngleController::parameters() const {
-  auto declared = SampledComponent::parameters();
-  for (auto& parameter : bindings_.declarations(defaults_))
-    declared.push_back(std::move(parameter));
-  return declared;
+  return with_period(bindings_.declarations(defaults_));
 }
 
 std::vector<SignalDeclaration> JointAngleController::signals() const {
@@ -123,8 +121,8 @@ void JointAngleController::compute_outputs(const Evaluation& evaluation) const {
 double JointAngleController::feedback_angle(const Evaluation& evaluation,
                                             const JointGeometry& geometry) const {
   if (source_count(kAngle) > 0) return input(evaluation, kAngle);
-  return joint_angle::angle_from_deflections(geometry, input(evaluation, kLeftDeflection),
-                                             input(evaluation, kRightDeflection));
+  return joint::angle_from_deflections(geometry, input(evaluation, kLeftDeflection),
+                                       input(evaluation, kRightDeflection));
 }
 
 void JointAngleController::sample(const Evaluation& evaluation, long index) const {
@@ -135,9 +133,7 @@ void JointAngleController::sample(const Evaluation& evaluation, long index) cons
   const double now = evaluation.time;
   const auto& limits = run.settings.pid;
   const double level = PidController::reference_at(signal(evaluation, 1), now);
-  const double co_contraction = level < limits.power_min
-                                    ? limits.power_min
-                                    : (level > limits.power_max ? limits.power_max : level);
+  const double co_contraction = std::clamp(level, limits.power_min, limits.power_max);
   run.hold(co_contraction);
   const Signal& reference = signal(evaluation, 0);
   run.held_reference = PidController::reference_at(reference, now);

@@ -1,10 +1,12 @@
 #pragma once
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "controllers/pid_controller.h"
+#include "models/laws/joint.h"
 #include "sim/config/config_node.h"
 #include "sim/parameter_bindings.h"
 #include "sim/sampled_component.h"
@@ -12,31 +14,16 @@
 
 namespace tcpmsim {
 
-// The controller's own model of the joint's geometry, for the self-sensed angle (plant and
-// model stay separate: these are not the joint's parameters).
-struct JointGeometry {
-  double radius = 0.0;                // r [m]
-  double left_pre_deflection = 0.0;   // x0_left [m]
-  double right_pre_deflection = 0.0;  // x0_right [m]
-};
-
 struct JointAngleSettings {
   // The angle loop, (7.7)-(7.9) with gains in W/rad on the differential power u; power_min and
   // power_max bound each muscle's power.
   PidSettings pid;
+  // The controller's own model of the cables (models/laws/joint.h), for the self-sensed angle
+  // (plant and model stay separate: these are not the joint's parameters).
   JointGeometry geometry;
 };
 
 namespace joint_angle {
-
-// The angle from the two muscles' deflections, each through the cable geometry
-// x_left = x0_left + r theta, x_right = x0_right - r theta, averaged:
-//     theta = ((x_left - x0_left) - (x_right - x0_right)) / (2 r).
-// Averaging cancels what the two share (a common error of the pair, a co-contraction's common
-// shortening while both are taut).
-inline double angle_from_deflections(const JointGeometry& g, double left, double right) {
-  return ((left - g.left_pre_deflection) - (right - g.right_pre_deflection)) / (2.0 * g.radius);
-}
 
 // Push-pull around the co-contraction level c: the right muscle (which raises the angle) gets
 // c + u/2, the left c - u/2, each within [P_min, P_max].
@@ -46,16 +33,13 @@ struct Powers {
 };
 inline Powers push_pull(double co_contraction, double differential, double power_min,
                         double power_max) {
-  const auto clamp = [&](double power) {
-    return power < power_min ? power_min : (power > power_max ? power_max : power);
-  };
-  return {clamp(co_contraction - 0.5 * differential), clamp(co_contraction + 0.5 * differential)};
+  return {std::clamp(co_contraction - 0.5 * differential, power_min, power_max),
+          std::clamp(co_contraction + 0.5 * differential, power_min, power_max)};
 }
 // The differential u beyond which neither power changes any more: |u| / 2 = the larger headroom
 // of c within [P_min, P_max]. The angle loop saturates there, so its integral does not wind up.
 inline double differential_limit(double co_contraction, double power_min, double power_max) {
-  const double up = power_max - co_contraction, down = co_contraction - power_min;
-  return 2.0 * (up > down ? up : down);
+  return 2.0 * std::max(power_max - co_contraction, co_contraction - power_min);
 }
 
 }  // namespace joint_angle
@@ -63,7 +47,7 @@ inline double differential_limit(double co_contraction, double power_min, double
 // Joint-angle control of an antagonistic pair with a co-contraction level (thesis 7.5 names the
 // antagonistic set-up as the way to drive both directions by heating). Sampled with the
 // drives' PWM; each sample:
-//     theta[k] = the encoder's angle, or joint_angle::angle_from_deflections of the two
+//     theta[k] = the encoder's angle, or joint::angle_from_deflections of the two
 //                estimators' deflections (self-sensing, from each muscle's L*)
 //     u[k]     = (7.7)-(7.9) on r[k] - theta[k], saturated at +-differential_limit (7.8)
 //     P_left, P_right = push_pull(c[k], u[k])

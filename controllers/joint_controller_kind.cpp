@@ -1,24 +1,35 @@
 #include "controllers/joint_controller_kind.h"
 
-#include <cmath>
+#include <string_view>
+#include <vector>
 
 #include "controllers/controller_facts.h"
 #include "controllers/joint_angle_controller.h"
 #include "models/joint_load.h"
+#include "models/load_kinds.h"
 #include "models/muscle.h"
 
 namespace tcpmsim {
 
 namespace {
 
+// The instances of `category` whose published Facts match.
+template <typename Facts, typename Match>
+std::vector<std::string> instances_where(const ScenarioBuilder& build, std::string_view category,
+                                         Match match) {
+  std::vector<std::string> found;
+  for (const auto* instance : build.instances(category)) {
+    const auto* facts = build.facts<Facts>(instance->name);
+    if (facts && match(*facts)) found.push_back(instance->name);
+  }
+  return found;
+}
+
 // The one Muscle Drive that heats `muscle`, or a located error.
 std::string drive_of(const ConfigNode& node, const std::string& muscle,
                      const ScenarioBuilder& build) {
-  std::vector<std::string> found;
-  for (const auto* drive : build.instances(kDriveCategory)) {
-    const auto* facts = build.facts<MuscleDriveFacts>(drive->name);
-    if (facts && facts->muscle == muscle) found.push_back(drive->name);
-  }
+  const auto found = instances_where<MuscleDriveFacts>(
+      build, kDriveCategory, [&](const MuscleDriveFacts& drive) { return drive.muscle == muscle; });
   if (found.size() != 1) {
     node.fail(
         "joint-angle control commands the Muscle Drive (drive model: muscle_drive) of each "
@@ -31,11 +42,9 @@ std::string drive_of(const ConfigNode& node, const std::string& muscle,
 // The one estimator that reads `drive`, or a located error.
 std::string estimator_of(const ConfigNode& node, const std::string& drive,
                          const ScenarioBuilder& build) {
-  std::vector<std::string> found;
-  for (const auto* estimator : build.instances(kEstimatorCategory)) {
-    const auto* facts = build.facts<EstimatorFacts>(estimator->name);
-    if (facts && facts->drive == drive) found.push_back(estimator->name);
-  }
+  const auto found = instances_where<EstimatorFacts>(
+      build, kEstimatorCategory,
+      [&](const EstimatorFacts& estimator) { return estimator.drive == drive; });
   if (found.size() != 1) {
     node.at("feedback")
         .fail("self-sensing reads one estimator per muscle; the drive " + drive + " has " +
@@ -47,7 +56,7 @@ std::string estimator_of(const ConfigNode& node, const std::string& drive,
 void build_joint_angle(const ConfigNode& node, const std::string& name, ScenarioBuilder& build) {
   node.declare({"type", "joint", "feedback", "reference", "co_contraction", "gains", "power_limits",
                 "anti_windup", "derivative_on", "model"});
-  const auto& joint = build.linked(node, "joint", "load");
+  const auto& joint = build.linked(node, "joint", kLoadCategory);
   if (joint.kind->name != kJointKind)
     node.fail("expected a joint to control; " + joint.name + " is a load of type " +
               joint.kind->name);
@@ -56,8 +65,9 @@ void build_joint_angle(const ConfigNode& node, const std::string& name, Scenario
   const bool self_sensing = node.choice("feedback", {"encoder", "self_sensing"}) == "self_sensing";
   const std::string left_drive = drive_of(node, left, build);
   const std::string right_drive = drive_of(node, right, build);
-  const MuscleDriveFacts& left_facts = sensing_drive(node, left_drive, build);
-  const MuscleDriveFacts& right_facts = sensing_drive(node, right_drive, build);
+  // drive_of finds only Muscle Drives, which publish these.
+  const MuscleDriveFacts& left_facts = *build.facts<MuscleDriveFacts>(left_drive);
+  const MuscleDriveFacts& right_facts = *build.facts<MuscleDriveFacts>(right_drive);
   check_takes_command(left_facts);
   check_takes_command(right_facts);
   if (left_facts.period != right_facts.period) {

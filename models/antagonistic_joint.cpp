@@ -11,8 +11,8 @@ double balance_angle(const AntagonisticJointParameters& p, double load_torque,
                      const std::function<double(double)>& left_force,
                      const std::function<double(double)>& right_force) {
   const auto torque = [&](double angle) {
-    return static_torque(p, angle, left_force(left_deflection(p, angle)),
-                         right_force(right_deflection(p, angle)), load_torque);
+    return static_torque(p, angle, left_force(left_deflection(p.geometry, angle)),
+                         right_force(right_deflection(p.geometry, angle)), load_torque);
   };
   // The torque does not rise with the angle; bracket its zero, then bisect.
   double low = -1.0, high = 1.0;
@@ -36,33 +36,33 @@ AntagonisticJoint::AntagonisticJoint(std::string group, AntagonisticJointParamet
 
 std::unique_ptr<AntagonisticJoint> AntagonisticJoint::from_config(
     const std::string& group, const ConfigNode& node, const SignalContext& signals,
-    const std::function<double(const AntagonisticJointParameters&, double)>& equilibrium,
-    bool* equilibrium_from_config) {
+    const std::function<double(const AntagonisticJointParameters&, double)>& equilibrium) {
   using P = AntagonisticJointParameters;
   P p;
   ParameterBindings<P> bind;
-  bind.quantity(node, "radius", "m", ValueCheck::positive(), p, bind.member(&P::radius));
+  bind.quantity(node, "radius", "m", ValueCheck::positive(), p,
+                [](P& v) -> double& { return v.geometry.radius; });
   bind.quantity(node, "inertia", "kg*m^2", ValueCheck::positive(), p, bind.member(&P::inertia));
-  bind.quantity_or(node, "damping", "N*m*s", 0.0, ValueCheck::non_negative(), p,
+  bind.quantity_or(node, "damping", "N*m*s/rad", 0.0, ValueCheck::non_negative(), p,
                    bind.member(&P::damping));
   if (const auto spring = node.find("spring")) {
     spring->declare({"stiffness", "rest_angle"});
-    bind.quantity(*spring, "stiffness", "N*m", ValueCheck::non_negative(), p,
+    bind.quantity(*spring, "stiffness", "N*m/rad", ValueCheck::non_negative(), p,
                   bind.member(&P::spring_stiffness));
     bind.quantity_or(*spring, "rest_angle", "rad", 0.0, {}, p, bind.member(&P::spring_rest_angle));
   }
   const ConfigNode pre = node.at("pre_deflection");
   pre.declare({"left", "right"});
-  bind.quantity(pre, "left", "m", {}, p, bind.member(&P::left_pre_deflection));
-  bind.quantity(pre, "right", "m", {}, p, bind.member(&P::right_pre_deflection));
+  bind.quantity(pre, "left", "m", {}, p,
+                [](P& v) -> double& { return v.geometry.left_pre_deflection; });
+  bind.quantity(pre, "right", "m", {}, p,
+                [](P& v) -> double& { return v.geometry.right_pre_deflection; });
   std::unique_ptr<Signal> torque;
   if (const auto load = node.find("load_torque")) torque = read_signal(*load, "N*m", signals);
   bind.quantity_or(node, "initial_velocity", "rad/s", 0.0, {}, p,
                    bind.member(&P::initial_velocity));
-  *equilibrium_from_config = false;
   if (const auto initial = node.find("initial_angle")) {
-    *equilibrium_from_config = initial->is_scalar() && initial->as_text() == "equilibrium";
-    if (*equilibrium_from_config) {
+    if (initial->is_word("equilibrium")) {
       p.initial_angle = equilibrium(p, torque ? torque->value(0.0) : 0.0);
       if (!std::isfinite(p.initial_angle)) {
         initial->fail(
@@ -76,7 +76,7 @@ std::unique_ptr<AntagonisticJoint> AntagonisticJoint::from_config(
   } else {
     bind.quantity_or(node, "initial_angle", "rad", 0.0, {}, p, bind.member(&P::initial_angle));
   }
-  node.describe_key("initial_angle", "quantity in rad, or equilibrium (0 rad)");
+  node.describe_key("initial_angle", "quantity in rad (default 0 rad), or equilibrium");
   return std::make_unique<AntagonisticJoint>(group, p, std::move(bind), std::move(torque));
 }
 
@@ -85,8 +85,8 @@ std::vector<OutputDeclaration> AntagonisticJoint::outputs() const {
           {"angular_velocity", "rad/s"},
           {"left_deflection", "m"},
           {"right_deflection", "m"},
-          {"radius", "m", false, false},
-          {"spring_stiffness", "N*m/rad", false, false}};
+          {"stiffness", "N*m/rad", true},
+          {"instantaneous_stiffness", "N*m/rad", true}};
 }
 
 std::vector<SignalDeclaration> AntagonisticJoint::signals() const {
@@ -96,6 +96,10 @@ std::vector<SignalDeclaration> AntagonisticJoint::signals() const {
 
 double AntagonisticJoint::load_torque(const Evaluation& evaluation) const {
   return load_torque_ ? signal(evaluation, 0).value(evaluation.signal_time) : 0.0;
+}
+
+double AntagonisticJoint::load_torque_at_start(const Context& context) const {
+  return load_torque_ ? signal(context, 0).value(0.0) : 0.0;
 }
 
 void AntagonisticJoint::initialize(const Evaluation& evaluation,
@@ -110,10 +114,18 @@ void AntagonisticJoint::compute_outputs(const Evaluation& evaluation) const {
   const double angle = state(evaluation, 0);
   set_output(evaluation, kAngle, angle);
   set_output(evaluation, kAngularVelocity, state(evaluation, 1));
-  set_output(evaluation, kLeftDeflection, joint::left_deflection(p, angle));
-  set_output(evaluation, kRightDeflection, joint::right_deflection(p, angle));
-  set_output(evaluation, kRadius, p.radius);
-  set_output(evaluation, kSpringStiffness, p.spring_stiffness);
+  set_output(evaluation, kLeftDeflection, joint::left_deflection(p.geometry, angle));
+  set_output(evaluation, kRightDeflection, joint::right_deflection(p.geometry, angle));
+}
+
+void AntagonisticJoint::compute_observations(const Evaluation& evaluation) const {
+  const auto& p = run_parameters(evaluation);
+  set_output(evaluation, kStiffness,
+             joint::stiffness(p.geometry, input(evaluation, kLeftRestStiffness),
+                              input(evaluation, kRightRestStiffness), p.spring_stiffness));
+  set_output(evaluation, kInstantaneousStiffness,
+             joint::stiffness(p.geometry, input(evaluation, kLeftStiffness),
+                              input(evaluation, kRightStiffness), p.spring_stiffness));
 }
 
 void AntagonisticJoint::compute_derivatives(const Evaluation& evaluation,
@@ -130,21 +142,6 @@ void AntagonisticJoint::compute_derivatives(const Evaluation& evaluation,
 double AntagonisticJoint::next_breakpoint_after(const Evaluation& evaluation) const {
   return load_torque_ ? signal(evaluation, 0).next_breakpoint_after(evaluation.time)
                       : kNoBreakpoint;
-}
-
-JointStiffness::JointStiffness(std::string group)
-    : Component(std::move(group), "joint_stiffness") {}
-
-void JointStiffness::compute_outputs(const Evaluation& evaluation) const {
-  const double r = input(evaluation, kRadius);
-  const double spring = input(evaluation, kSpringStiffness);
-  set_output(
-      evaluation, kStiffness,
-      r * r * (input(evaluation, kLeftRestStiffness) + input(evaluation, kRightRestStiffness)) +
-          spring);
-  set_output(
-      evaluation, kInstantaneousStiffness,
-      r * r * (input(evaluation, kLeftStiffness) + input(evaluation, kRightStiffness)) + spring);
 }
 
 }  // namespace tcpmsim

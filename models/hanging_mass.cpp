@@ -8,7 +8,7 @@ HangingMass::HangingMass(std::string group, HangingMassParameters defaults,
 
 std::unique_ptr<HangingMass> HangingMass::from_config(
     const std::string& group, const ConfigNode& node,
-    const std::function<double(double weight)>& equilibrium, bool* equilibrium_from_config) {
+    const std::function<double(double weight)>& equilibrium) {
   using P = HangingMassParameters;
   P p;
   ParameterBindings<P> bind;
@@ -18,8 +18,7 @@ std::unique_ptr<HangingMass> HangingMass::from_config(
   bind.quantity_or(node, "damping", "N*s/m", 0.0, ValueCheck::non_negative(), p,
                    bind.member(&P::damping));
   const ConfigNode initial = node.at("initial_deflection");
-  *equilibrium_from_config = initial.is_scalar() && initial.as_text() == "equilibrium";
-  if (*equilibrium_from_config) {
+  if (initial.is_word("equilibrium")) {
     p.initial_deflection = equilibrium(p.mass * p.gravity);
     bind.bind(initial.parameter_path(), "m", {}, bind.member(&P::initial_deflection));
   } else {

@@ -26,11 +26,10 @@ class HangingMass final : public ParametricComponent<HangingMassParameters> {
   HangingMass(std::string group, HangingMassParameters defaults,
               ParameterBindings<HangingMassParameters> bindings);
   // Keys mass, gravity, damping, initial_deflection (a quantity, or `equilibrium`: then
-  // `equilibrium` gives it from the weight m g and *equilibrium_from_config is set), and
-  // initial_velocity.
+  // `equilibrium` gives it from the weight m g), and initial_velocity.
   static std::unique_ptr<HangingMass> from_config(
       const std::string& group, const ConfigNode& node,
-      const std::function<double(double weight)>& equilibrium, bool* equilibrium_from_config);
+      const std::function<double(double weight)>& equilibrium);
 
   std::vector<StateDeclaration> states() const override {
     return {{"deflection", "m", 1e-12}, {"velocity", "m/s", 1e-10}};

@@ -13,8 +13,6 @@ namespace tcpmsim {
 
 namespace {
 
-inline constexpr const char* kLoadCategory = "load";
-
 // The muscles a load holds, with what they published (a copy: rules made here outlive the
 // builder).
 struct Held {
@@ -85,58 +83,35 @@ void build_imposed_force(const ConfigNode& node, const std::string& name, Scenar
   system.connect(encoder, "measured", muscles.front().name + ".deflection");
 }
 
-// What a held muscle contributes to the static balance at the start.
-struct RestTerms {
-  double thermal_force;  // F_T(0)
-  double force_offset;   // phi_0
-  double k1;
-};
-
 // The deflection at which `weight` hangs still from muscles at rest: the static balance of (7.5)
 // with relaxed dashpots, m g = sum (k1 x + F_T(0) + phi_0). Attached terms must carry no force
-// at rest (a Maxwell arm carries none); a muscle with one that does is refused by the caller.
-template <typename Terms>
-double static_balance(double weight, const std::vector<Held>& muscles, Terms terms) {
+// at rest (a Maxwell arm carries none; check_resting_balance refuses the others).
+double static_balance(double weight, const std::vector<RestingMuscle>& muscles) {
   double net = weight, stiffness = 0.0;
   for (const auto& muscle : muscles) {
-    const RestTerms rest = terms(muscle);
-    net = net - rest.thermal_force - rest.force_offset;
-    stiffness += rest.k1;
+    net = net - muscle.thermal_force - muscle.mechanics.force_offset;
+    stiffness += muscle.mechanics.k1;
   }
   return net / stiffness;
 }
 
 void build_hanging_mass(const ConfigNode& node, const std::string& name, ScenarioBuilder& build) {
   const auto muscles = held_muscles(node, build);
-  if (const auto initial = node.find("initial_deflection");
-      initial && initial->is_scalar() && initial->as_text() == "equilibrium") {
-    for (const auto& muscle : muscles) {
-      if (muscle.facts.rest_force_attached) {
-        initial->fail("the equilibrium is found from k1, F_T and phi_0 alone, but " + muscle.name +
-                      " has an effect that carries force at rest; give the deflection");
-      }
-    }
-  }
-  const auto equilibrium = [muscles](double weight) {
-    return static_balance(weight, muscles, [](const Held& muscle) {
-      return RestTerms{muscle.facts.initial_thermal_force, muscle.facts.mechanics.force_offset,
-                       muscle.facts.mechanics.k1};
-    });
-  };
-  bool at_equilibrium = false;
+  std::vector<RestingMuscle> as_built;
+  for (const auto& muscle : muscles) as_built.push_back(muscle.facts.resting);
+  const auto equilibrium = [&as_built](double weight) { return static_balance(weight, as_built); };
   SystemBuilder& system = build.system();
-  auto& mass = system.add(HangingMass::from_config(name, node, equilibrium, &at_equilibrium));
-  if (at_equilibrium) {
+  auto& mass = system.add(HangingMass::from_config(name, node, equilibrium));
+  if (const ConfigNode initial = node.at("initial_deflection"); initial.is_word("equilibrium")) {
+    for (const auto& muscle : muscles)
+      check_resting_balance(initial, muscle.name, muscle.facts, "the deflection");
     system.derive(
         name + ".initial_deflection",
-        [muscles, name](const Context& context) {
-          return static_balance(
-              context.parameter(name + ".mass") * context.parameter(name + ".gravity"), muscles,
-              [&context](const Held& muscle) {
-                return RestTerms{muscle.facts.initial_thermal_force_in(context),
-                                 context.parameter(muscle.name + ".mechanics.force_offset"),
-                                 context.parameter(muscle.name + ".mechanics.k1")};
-              });
+        [muscles, hanging = &mass](const Context& context) {
+          std::vector<RestingMuscle> resting;
+          for (const auto& muscle : muscles) resting.push_back(muscle.facts.resting_in(context));
+          const HangingMassParameters p = hanging->parameters_in(context);
+          return static_balance(p.mass * p.gravity, resting);
         },
         "the static balance m g = sum of k1 x + F_T + phi_0");
   }
@@ -185,7 +160,7 @@ void register_load_kinds(KindRegistry& kinds) {
          "load"},
         {example("load: {type: hanging_mass, mass: 35 g, initial_deflection: 20 mm}\n"), "load"}},
        InstanceBuilder(build_hanging_mass)});
-  register_joint_load(kinds, kLoadCategory);
+  register_joint_load(kinds);
 }
 
 }  // namespace tcpmsim

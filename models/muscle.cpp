@@ -1,6 +1,7 @@
 #include "models/muscle.h"
 
 #include <set>
+#include <stdexcept>
 
 #include "models/coil_impedance.h"
 #include "models/laws/thermal_force.h"
@@ -82,6 +83,8 @@ void build_effects(const ConfigNode& muscle, const std::string& name, MuscleFact
 std::string replaced_resistance(std::string scenario) {
   const std::string from = "  resistance: {form: linear";
   const auto start = scenario.find(from);
+  if (start == std::string::npos)
+    throw std::logic_error("the example muscle no longer has a linear resistance to replace");
   const auto end = scenario.find('\n', start);
   return scenario.replace(start, end - start, "  resistance: 10.18 ohm");
 }
@@ -114,16 +117,25 @@ void build_muscle(const ConfigNode& muscle, const std::string& name, ScenarioBui
   MuscleFacts facts;
   facts.inductance_is_measure = coil.defaults().inductance.is_measure;
   facts.lambda_x = coil.defaults().inductance.lambda_x;
-  facts.mechanics = mechanics.defaults();
-  facts.initial_thermal_force = thermal.initial_thermal_force;
-  facts.initial_thermal_force_in = thermal.initial_thermal_force_in;
-  facts.heat_balance = thermal.heat_balance;
-  facts.reports_temperature = thermal.reports_temperature;
+  facts.thermal = thermal;
+  facts.resting = {mechanics.defaults(), thermal.initial_thermal_force};
+  facts.resting_in = [sls = &mechanics,
+                      thermal_force = thermal.initial_thermal_force_in](const Context& context) {
+    return RestingMuscle{sls->parameters_in(context), thermal_force(context)};
+  };
   build_effects(muscle, name, facts, build);
   build.publish(name, facts);
 }
 
 }  // namespace
+
+void check_resting_balance(const ConfigNode& value, const std::string& muscle,
+                           const MuscleFacts& facts, const std::string& give) {
+  if (facts.rest_force_attached) {
+    value.fail("the equilibrium is found from k1, F_T and phi_0 alone, but " + muscle +
+               " has an effect that carries force at rest; give " + give);
+  }
+}
 
 void register_muscle_kinds(KindRegistry& kinds) {
   kinds.add_category({kMuscleCategory, "muscles", "", "",

@@ -25,28 +25,45 @@ namespace tcpmsim {
 // <name>.attached_rest_force (the same at rest), the output <name>.rest_deflection, and
 // <name>.heat_loss (physical form: a heat-loss term in W).
 
+// What a thermal-force part kind builds and reports.
+struct ThermalForm {
+  double initial_thermal_force = 0.0;  // F_T at t = 0 as built [N]
+  // F_T at t = 0 in a run (its parameters and signals as the context has them).
+  std::function<double(const Context&)> initial_thermal_force_in;
+  bool reports_temperature = false;  // <muscle>.temperature exists
+  bool heat_balance = false;         // a thermal node whose heat balance takes attached terms
+};
+
+// A muscle at rest at the start: every dashpot relaxed (x_d = x) and F_T at its initial value.
+// What a static balance of the muscles a load holds needs.
+struct RestingMuscle {
+  SlsParameters mechanics;
+  double thermal_force = 0.0;  // F_T(0) [N]
+  // (7.5) with x_d = x: k1 x + F_T + phi_0.
+  double force(double deflection) const {
+    return sls::total_force(mechanics, sls::elastic_force(mechanics, deflection, deflection),
+                            thermal_force);
+  }
+};
+
 // What a muscle tells the instances built after it (its drive, its load, its effects).
 struct MuscleFacts {
   bool inductance_is_measure = false;  // (7.3) in the Muscle Drive's L*, not henries
   double lambda_x = 0.0;               // as built [m]
-  SlsParameters mechanics;             // as built
-  double initial_thermal_force = 0.0;  // F_T at t = 0 as built [N]
-  // F_T at t = 0 in a run (its parameters and signals as the context has them).
-  std::function<double(const Context&)> initial_thermal_force_in;
-  bool heat_balance = false;         // a thermal node whose heat balance takes attached terms
-  bool reports_temperature = false;  // <name>.temperature exists
+  ThermalForm thermal;                 // its thermal part, as built
+  RestingMuscle resting;               // at the start, as built
+  std::function<RestingMuscle(const Context&)> resting_in;  // the same in a run
   // An attached effect carries force at rest (a parallel spring): a static balance found from
-  // k1, F_T and phi_0 alone would be wrong.
+  // the RestingMuscle alone would be wrong.
   bool rest_force_attached = false;
 };
 
-// What a thermal-force part kind builds and reports.
-struct ThermalForm {
-  double initial_thermal_force = 0.0;
-  std::function<double(const Context&)> initial_thermal_force_in;
-  bool reports_temperature = false;
-  bool heat_balance = false;
-};
+// A load whose start `value` is its muscles' static balance (RestingMuscle) refuses, located at
+// `value`, a muscle with an attached effect that carries force at rest; `give` names what to give
+// instead ("the deflection").
+void check_resting_balance(const ConfigNode& value, const std::string& muscle,
+                           const MuscleFacts& facts, const std::string& give);
+
 // Builds the thermal part of muscle `muscle` from the muscle's section, wiring <muscle>.power.
 using ThermalFormBuilder = std::function<ThermalForm(
     const ConfigNode& muscle_section, const std::string& muscle, ScenarioBuilder& build)>;

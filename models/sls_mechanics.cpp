@@ -102,18 +102,20 @@ void SlsMechanics::compute_outputs(const Evaluation& evaluation) const {
   if (has_attachments()) {
     force += input_sum(evaluation, kAttachedStiffness) * x + input_sum(evaluation, kAttachedForce);
   }
+  // Slack: the muscle is longer than the cable's path, at its force-free deflection, and
+  // carries nothing (not the rounding residue of (7.5) there); likewise once relaxed.
+  const double rest = deflection_imposed() ? x : rest_deflection(evaluation);
+  const bool slack = held_by_cable() && x > input(evaluation, kCableDeflection);
+  const bool slack_at_rest = held_by_cable() && rest > input(evaluation, kCableDeflection);
   set_output(evaluation, kDeflectionOutput, x);
   set_output(evaluation, kElasticForce, elastic);
-  set_output(evaluation, kForceOutput, force);
+  set_output(evaluation, kForceOutput, slack ? 0.0 : force);
   // An imposed deflection is its own rest deflection; only an imposed force needs solving.
-  set_output(evaluation, kRestDeflection, deflection_imposed() ? x : rest_deflection(evaluation));
-  // Slack: the muscle is longer than the cable's path, at its force-free deflection.
-  const bool slack = held_by_cable() && x > input(evaluation, kCableDeflection);
-  const double attached = has_attachments() ? input_sum(evaluation, kAttachedStiffness) : 0.0;
-  const double attached_rest =
-      has_attachments() ? input_sum(evaluation, kAttachedRestStiffness) : 0.0;
-  set_output(evaluation, kStiffness, slack ? 0.0 : p.k1 + p.k2 + attached);
-  set_output(evaluation, kRestStiffness, slack ? 0.0 : p.k1 + attached_rest);
+  set_output(evaluation, kRestDeflection, rest);
+  set_output(evaluation, kStiffness,
+             slack ? 0.0 : p.k1 + p.k2 + input_sum(evaluation, kAttachedStiffness));
+  set_output(evaluation, kRestStiffness,
+             slack_at_rest ? 0.0 : p.k1 + input_sum(evaluation, kAttachedRestStiffness));
 }
 
 void SlsMechanics::compute_derivatives(const Evaluation& evaluation, double* derivatives) const {

@@ -20,8 +20,8 @@ namespace tcpmsim {
 // the muscle goes slack at its force-free deflection instead, longer than the cable's path
 // (the cable goes loose),
 //     x = max(x_cable, x_free),   F(x_free) = 0 (deflection_at_force with F = 0),
-// so F = max(F(x_cable), 0) (F rises with x: k1 + k2 + S > 0). Exactly one of the three must be
-// connected.
+// so F = max(F(x_cable), 0) (F rises with x: k1 + k2 + S > 0); a slack muscle's force is 0. Exactly
+// one of the three must be connected.
 //
 // Further force terms attach without the SLS knowing them (models/effects). Each publishes its
 // force as affine in the deflection at its present state, F_j = s_j x + b_j, through the
@@ -47,7 +47,8 @@ class SlsMechanics final : public ParametricComponent<SlsParameters> {
   // Besides the recorded force, deflection and elastic force, port-only outputs: the rest
   // deflection (above), and the small-signal stiffness dF/dx the muscle presents to what holds
   // it, 0 while slack: "stiffness" at its present state (k1 + k2 + S: the instantaneous,
-  // elastic response) and "rest_stiffness" once its dashpots have relaxed (k1 + S_rest).
+  // elastic response) and "rest_stiffness" once its dashpots have relaxed (k1 + S_rest; 0 if it
+  // would then be slack).
   enum Output {
     kForceOutput,
     kDeflectionOutput,

@@ -29,7 +29,7 @@ void attach_maxwell_branch(const ConfigNode& section, const MuscleAttachment& mu
 
 void attach_free_convection(const ConfigNode& section, const MuscleAttachment& muscle,
                             ScenarioBuilder& build) {
-  if (!muscle.facts->heat_balance) {
+  if (!muscle.facts->thermal.heat_balance) {
     section.fail(
         "free convection needs a heat balance to attach to: use the physical thermal form "
         "(a thermal section and thermal_force.form: physical)");
@@ -43,7 +43,7 @@ void attach_free_convection(const ConfigNode& section, const MuscleAttachment& m
 
 void attach_thermal_softening(const ConfigNode& section, const MuscleAttachment& muscle,
                               ScenarioBuilder& build) {
-  if (!muscle.facts->reports_temperature) {
+  if (!muscle.facts->thermal.reports_temperature) {
     section.fail(
         "a temperature-dependent stiffness needs the muscle's temperature: use the physical "
         "thermal form, or give the reduced form's thermal_force.force_per_kelvin");
