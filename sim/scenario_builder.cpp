@@ -39,7 +39,6 @@ void ScenarioBuilder::declare_instances(const ConfigNode& root) {
     check_name(located, name);
     if (!names.insert(name).second)
       located.fail("two instances are named '" + name + "'; names must be unique");
-    by_name_[name] = instances_.size();
     by_category_[category.name].push_back(instances_.size());
     instances_.push_back({category.name, name, node, &kinds_.select(category.name, node)});
   };
@@ -56,6 +55,7 @@ void ScenarioBuilder::declare_instances(const ConfigNode& root) {
       }
     }
   }
+  for (const auto& instance : instances_) by_name_[instance.name] = &instance;
 }
 
 std::unique_ptr<Signal> ScenarioBuilder::signal(const ConfigNode& node,
@@ -74,7 +74,7 @@ std::vector<const InstanceDeclaration*> ScenarioBuilder::instances(
 
 const InstanceDeclaration* ScenarioBuilder::instance(std::string_view name) const {
   const auto found = by_name_.find(std::string(name));
-  return found == by_name_.end() ? nullptr : &instances_[found->second];
+  return found == by_name_.end() ? nullptr : found->second;
 }
 
 const InstanceDeclaration& ScenarioBuilder::named(const ConfigNode& name_node,
@@ -103,6 +103,8 @@ const InstanceDeclaration& ScenarioBuilder::linked(const ConfigNode& node, std::
     return found;
   }
   node.describe_key(key, "name of " + article(what), "the only " + what);
+  if (const auto member = member_links_.find(category); member != member_links_.end())
+    return *by_name_.at(member->second);
   const auto indices = by_category_.find(category);
   const std::size_t count = indices == by_category_.end() ? 0 : indices->second.size();
   if (count == 1) return instances_[indices->second.front()];
@@ -134,6 +136,26 @@ std::vector<const InstanceDeclaration*> ScenarioBuilder::linked_all(
     return found;
   }
   return {&linked(node, key, category)};
+}
+
+void ScenarioBuilder::build_member(const std::string& category, const std::string& name,
+                                   const ConfigNode& node, const Kind& kind,
+                                   const std::map<std::string, std::string>& links) {
+  if (by_name_.count(name)) throw std::logic_error("two instances are named '" + name + "'");
+  by_name_[name] = &members_.emplace_back(InstanceDeclaration{category, name, node, &kind});
+  for (const auto& [linked_category, member] : links) {
+    if (!by_name_.count(member))
+      throw std::logic_error("member " + name + " links to no instance named '" + member + "'");
+  }
+  const auto saved = member_links_;
+  for (const auto& [linked_category, member] : links) member_links_[linked_category] = member;
+  try {
+    kinds_.builder<InstanceBuilder>(kind)(node, name, *this);
+  } catch (...) {
+    member_links_ = saved;
+    throw;
+  }
+  member_links_ = saved;
 }
 
 void ScenarioBuilder::run_checks() const {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <any>
+#include <deque>
 #include <functional>
 #include <map>
 #include <memory>
@@ -59,6 +60,14 @@ class ScenarioBuilder {
                                                      std::string_view plural_key,
                                                      std::string_view category) const;
 
+  // Builds an instance that is part of another one (a bundle's member muscle "b/m003", its
+  // drive "b/m003/drive") from a section the other instance holds (a template): `kind`'s builder
+  // runs with `links` answering the link keys the section leaves out ({muscle: "b/m003"}), and the
+  // member can be linked to by name afterwards. Members do not count as "the only" instance of
+  // their category, and their names, which hold a slash, cannot collide with declared ones.
+  void build_member(const std::string& category, const std::string& name, const ConfigNode& node,
+                    const Kind& kind, const std::map<std::string, std::string>& links);
+
   template <typename Facts>
   void publish(const std::string& instance, Facts facts) {
     facts_[instance] = std::move(facts);
@@ -82,9 +91,11 @@ class ScenarioBuilder {
   const KindRegistry& kinds_;
   ScenarioSettings settings_;
   SystemBuilder system_;
-  std::vector<InstanceDeclaration> instances_;
-  std::map<std::string, std::size_t> by_name_;                                // name -> instance
-  std::map<std::string, std::vector<std::size_t>, std::less<>> by_category_;  // -> instances
+  std::vector<InstanceDeclaration> instances_;  // declared in the scenario
+  std::deque<InstanceDeclaration> members_;     // built as parts of others (stable addresses)
+  std::map<std::string, const InstanceDeclaration*> by_name_;                 // either
+  std::map<std::string, std::vector<std::size_t>, std::less<>> by_category_;  // declared only
+  std::map<std::string, std::string, std::less<>> member_links_;  // category -> member, while built
   std::map<std::string, std::any> facts_;
   std::vector<std::function<void()>> checks_;
 };

@@ -18,6 +18,7 @@ struct SignalDescription {
   std::vector<std::pair<std::string, double>> parameters;
   std::vector<std::pair<std::string, std::vector<double>>> arrays;
   std::vector<std::pair<std::string, SignalDescription>> parts;
+  bool operator==(const SignalDescription&) const = default;
 };
 
 class Signal;

@@ -55,9 +55,22 @@ void SystemBuilder::constrain(ParameterConstraint constraint) {
   constraints_.push_back(std::move(constraint));
 }
 
+bool SystemBuilder::declares_parameter(std::string_view path) const {
+  for (const auto& component : components_) {
+    for (const auto& declared : component->parameters())
+      if (declared.path == path) return true;
+  }
+  return false;
+}
+
+void SystemBuilder::declare_members(MemberSet set) {
+  member_sets_.push_back(std::move(set));
+}
+
 std::shared_ptr<const System> SystemBuilder::build() {
   std::shared_ptr<System> system(new System());
   system->components_ = std::move(components_);
+  system->member_sets_ = std::move(member_sets_);
   system->assign_slices();
   system->wire(*this);
   system->order_by_feedthrough();

@@ -56,6 +56,20 @@ using ParameterConstraint = std::function<std::string(const Context&)>;
 
 class SystemBuilder;
 
+// Instances that are alike and recorded together: the members "<name>/<member>" of a bundle.
+struct MemberSet {
+  std::string name;                  // "b"
+  std::vector<std::string> members;  // "m000", ...: the instances "b/m000", ...
+  // Fixed per-member facts the record keeps beside the traces (a bundle's packing: where each
+  // member sits), one value per member.
+  struct Property {
+    std::string name;  // "centre_x"
+    std::string unit;
+    std::vector<double> values;
+  };
+  std::vector<Property> properties;
+};
+
 // Components assembled into one ODE system y' = f(t, y). The System owns the components,
 // assigns each its slice of the state vector, of the output vector and of the parameter vector,
 // wires inputs to outputs and evaluates everything in an order that respects direct
@@ -74,6 +88,7 @@ class System {
   const std::vector<std::unique_ptr<Component>>& components() const { return components_; }
   const std::vector<ParameterInfo>& parameters() const { return parameters_; }
   const std::vector<SignalSlot>& signal_slots() const { return signal_slots_; }
+  const std::vector<MemberSet>& member_sets() const { return member_sets_; }
   int signal_index(std::string_view output) const;                  // "group.name"; -1 if absent
   std::optional<int> parameter_index(std::string_view path) const;  // "muscle.mechanics.k2"
   std::optional<int> signal_slot(std::string_view group, std::string_view name) const;
@@ -161,6 +176,7 @@ class System {
   };
   std::vector<Derivation> derivations_;
   std::vector<ParameterConstraint> constraints_;
+  std::vector<MemberSet> member_sets_;
 };
 
 // Builds a System: components are added, wired by name and assembled once.
@@ -189,6 +205,10 @@ class SystemBuilder {
   // from what ("1 / drive.pwm_frequency").
   void derive(std::string path, ParameterRule rule, std::string explanation);
   void constrain(ParameterConstraint constraint);
+  // Whether a component added so far declares the parameter `path`.
+  bool declares_parameter(std::string_view path) const;
+  // Declares the instances "<set.name>/<member>" alike, to be recorded together (MemberSet).
+  void declare_members(MemberSet set);
 
   // Resolves offsets and connections and fixes the evaluation order. Throws std::logic_error on
   // an unconnected input, an unknown output, a duplicate output, state or parameter, or an
@@ -217,6 +237,7 @@ class SystemBuilder {
   };
   std::vector<PendingDerivation> derivations_;
   std::vector<ParameterConstraint> constraints_;
+  std::vector<MemberSet> member_sets_;
 };
 
 }  // namespace tcpmsim

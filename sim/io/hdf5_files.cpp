@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <stdexcept>
+#include <vector>
 
 namespace tcpmsim {
 
@@ -22,6 +23,17 @@ void write_text_attribute(H5::H5Object& object, const std::string& name, const s
   type.setCset(H5T_CSET_UTF8);
   H5::Attribute attribute = object.createAttribute(name, type, H5::DataSpace(H5S_SCALAR));
   attribute.write(type, value);
+}
+
+void write_text_array_attribute(H5::H5Object& object, const std::string& name,
+                                const std::vector<std::string>& values) {
+  H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
+  type.setCset(H5T_CSET_UTF8);
+  const hsize_t size = values.size();
+  H5::Attribute attribute = object.createAttribute(name, type, H5::DataSpace(1, &size));
+  std::vector<const char*> pointers;
+  for (const auto& value : values) pointers.push_back(value.c_str());
+  attribute.write(type, pointers.data());
 }
 
 }  // namespace tcpmsim

@@ -3,6 +3,7 @@
 #include <H5Cpp.h>
 
 #include <string>
+#include <vector>
 
 // What the HDF5 record and the analysis writers share about files: where a file lives until it
 // is complete, its directories, and text attributes.
@@ -16,5 +17,8 @@ void create_parent_directories(const std::string& path);
 
 // A scalar UTF-8 text attribute.
 void write_text_attribute(H5::H5Object& object, const std::string& name, const std::string& value);
+// A 1-D array of UTF-8 texts as an attribute (a bundle's member names).
+void write_text_array_attribute(H5::H5Object& object, const std::string& name,
+                                const std::vector<std::string>& values);
 
 }  // namespace tcpmsim

@@ -2,10 +2,12 @@
 
 #include <H5Cpp.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 
 #include "sim/io/hdf5_files.h"
+#include "sim/io/record_layout.h"
 #include "sim/signal.h"
 #include "tcpmsim/version.h"
 
@@ -26,12 +28,16 @@ void write_scalar(H5::H5Object& object, const std::string& name, const H5::PredT
   attribute.write(type, &value);
 }
 
+// A series of `columns` numbers per time: 1-D for one, time x column for more. A 2-D chunk holds
+// about as many numbers as a 1-D one.
 H5::DataSet create_series(H5::Group& parent, const std::string& name, const std::string& units,
-                          std::size_t chunk) {
-  const hsize_t initial = 0, unlimited = H5S_UNLIMITED, chunk_size = chunk;
-  H5::DataSpace space(1, &initial, &unlimited);
+                          std::size_t chunk, std::size_t columns) {
+  const int rank = columns == 1 ? 1 : 2;
+  const hsize_t initial[2] = {0, columns}, maximum[2] = {H5S_UNLIMITED, columns};
+  const hsize_t chunk_size[2] = {std::max<hsize_t>(1, chunk / columns), columns};
+  H5::DataSpace space(rank, initial, maximum);
   H5::DSetCreatPropList properties;
-  properties.setChunk(1, &chunk_size);
+  properties.setChunk(rank, chunk_size);
   properties.setShuffle();
   properties.setDeflate(1);
   H5::DataSet dataset = parent.createDataSet(name, H5::PredType::NATIVE_DOUBLE, space, properties);
@@ -79,6 +85,16 @@ void write_statistics(H5::H5Object& root, const SolverStatistics& statistics) {
   write_scalar(root, "samples", type, std::int64_t{statistics.output_samples});
 }
 
+// The group at `path` ("/inputs/b/drive.power"), with the groups above it.
+H5::Group create_groups(H5::H5File& file, const std::string& path) {
+  for (std::size_t slash = path.find('/', 1); slash != std::string::npos;
+       slash = path.find('/', slash + 1)) {
+    const std::string parent = path.substr(0, slash);
+    if (!file.nameExists(parent)) file.createGroup(parent);
+  }
+  return file.createGroup(path);
+}
+
 }  // namespace
 
 std::string Hdf5Recorder::failed_path(const std::string& path) {
@@ -106,32 +122,80 @@ Hdf5Recorder::Hdf5Recorder(std::string path, const System& system, const Context
   write_scalar(root, "output_interval", H5::PredType::NATIVE_DOUBLE, metadata.output_interval);
   write_scalar(root, "duration", H5::PredType::NATIVE_DOUBLE, metadata.duration);
 
-  file_->datasets.push_back(create_series(root, "time", "s", chunk_samples_));
-  buffers_.emplace_back();
-  for (const auto& channel : system.channels()) {
-    if (!channel.recorded) continue;
+  file_->datasets.push_back(create_series(root, "time", "s", chunk_samples_, 1));
+  columns_.emplace_back();
+  for (auto& series : record_layout(system)) {
     // A part's group sits inside its instance's ("/muscle/maxwell_branch").
-    for (std::size_t slash = channel.group.find('/'); slash != std::string::npos;
-         slash = channel.group.find('/', slash + 1)) {
-      const std::string parent = channel.group.substr(0, slash);
+    for (std::size_t slash = series.group.find('/'); slash != std::string::npos;
+         slash = series.group.find('/', slash + 1)) {
+      const std::string parent = series.group.substr(0, slash);
       if (!file_->groups.count(parent))
         file_->groups[parent] = file_->file.createGroup("/" + parent);
     }
-    auto [entry, created] = file_->groups.try_emplace(channel.group);
-    if (created) entry->second = file_->file.createGroup("/" + channel.group);
-    file_->datasets.push_back(
-        create_series(entry->second, channel.name, channel.unit, chunk_samples_));
-    signal_indices_.push_back(channel.signal_index);
-    buffers_.emplace_back();
+    auto [entry, created] = file_->groups.try_emplace(series.group);
+    if (created) entry->second = file_->file.createGroup("/" + series.group);
+    H5::DataSet dataset = create_series(entry->second, series.name, series.unit, chunk_samples_,
+                                        series.signal_indices.size());
+    if (!series.members.empty()) write_text_array_attribute(dataset, "members", series.members);
+    file_->datasets.push_back(dataset);
+    columns_.push_back(std::move(series.signal_indices));
   }
-  for (auto& buffer : buffers_) buffer.reserve(chunk_samples_);
+  std::size_t width = 1;
+  for (const auto& columns : columns_) width += columns.size();
+  // Rows buffered before a write: a chunk's worth, or fewer when the record is wide, so that
+  // the buffers stay near kBufferedValues numbers whatever the bundle's size.
+  flush_rows_ = std::max<std::size_t>(1, std::min(chunk_samples_, kBufferedValues / width));
+  buffers_.resize(columns_.size());
+  for (std::size_t k = 0; k < buffers_.size(); ++k)
+    buffers_[k].reserve(flush_rows_ * std::max<std::size_t>(1, columns_[k].size()));
 
-  H5::Group inputs = file_->file.createGroup("/inputs");
+  write_member_properties(system);
+  write_inputs(system, context);
+}
+
+// /<set>/<property>: a member set's fixed facts, a value per member.
+void Hdf5Recorder::write_member_properties(const System& system) {
+  for (const auto& set : system.member_sets()) {
+    for (const auto& property : set.properties) {
+      auto [entry, created] = file_->groups.try_emplace(set.name);
+      if (created) entry->second = file_->file.createGroup("/" + set.name);
+      write_array(entry->second, property.name, property.values);
+      H5::DataSet dataset = entry->second.openDataSet(property.name);
+      write_text_attribute(dataset, "units", property.unit);
+      write_text_array_attribute(dataset, "members", set.members);
+    }
+  }
+}
+
+// /inputs: each prescribed signal's description; a member set's signal once, with a `members`
+// attribute, when every member has it alike (one per member otherwise).
+void Hdf5Recorder::write_inputs(const System& system, const Context& context) {
+  file_->file.createGroup("/inputs");
   const auto& slots = system.signal_slots();
-  for (std::size_t s = 0; s < slots.size(); ++s) {
-    H5::Group group = inputs.createGroup(slots[s].group + "." + slots[s].name);
-    write_text_attribute(group, "units", slots[s].unit);
-    write_description(group, context.signal(static_cast<int>(s)).describe());
+  auto write = [&](const std::string& path, int slot) {
+    H5::Group group = create_groups(file_->file, "/inputs/" + path);
+    write_text_attribute(group, "units", slots[static_cast<std::size_t>(slot)].unit);
+    write_description(group, context.signal(slot).describe());
+    return group;
+  };
+  for (const auto& entry : input_layout(system)) {
+    if (entry.members.empty()) {
+      write(entry.path, entry.slots.front());
+      continue;
+    }
+    const SignalDescription first = context.signal(entry.slots.front()).describe();
+    bool alike = true;
+    for (const int slot : entry.slots) alike = alike && context.signal(slot).describe() == first;
+    if (alike) {
+      H5::Group group = write(entry.path, entry.slots.front());
+      write_text_array_attribute(group, "members", entry.members);
+      continue;
+    }
+    const auto dot = entry.path.find('.');
+    const auto slash = entry.path.find('/');
+    const std::string set = entry.path.substr(0, std::min(dot, slash));
+    for (std::size_t k = 0; k < entry.members.size(); ++k)
+      write(set + "/" + entry.members[k] + entry.path.substr(set.size()), entry.slots[k]);
   }
 }
 
@@ -148,22 +212,27 @@ Hdf5Recorder::~Hdf5Recorder() {
 
 void Hdf5Recorder::record(double time, std::span<const double> signals) {
   buffers_[0].push_back(time);
-  for (std::size_t k = 0; k < signal_indices_.size(); ++k) {
-    buffers_[k + 1].push_back(signals[static_cast<std::size_t>(signal_indices_[k])]);
+  for (std::size_t k = 1; k < buffers_.size(); ++k) {
+    for (const int index : columns_[k])
+      buffers_[k].push_back(signals[static_cast<std::size_t>(index)]);
   }
-  if (buffers_[0].size() >= chunk_samples_) flush();
+  if (buffers_[0].size() >= flush_rows_) flush();
 }
 
 void Hdf5Recorder::flush() {
   const hsize_t count = buffers_[0].size();
   if (count == 0) return;
-  const hsize_t offset = written_, total = written_ + count;
+  const hsize_t total = written_ + count;
   for (std::size_t k = 0; k < buffers_.size(); ++k) {
     H5::DataSet& dataset = file_->datasets[k];
-    dataset.extend(&total);
+    const hsize_t columns = k == 0 ? 1 : columns_[k].size();
+    const int rank = columns == 1 ? 1 : 2;
+    const hsize_t extent[2] = {total, columns}, offset[2] = {written_, 0},
+                  block[2] = {count, columns};
+    dataset.extend(extent);
     H5::DataSpace file_space = dataset.getSpace();
-    file_space.selectHyperslab(H5S_SELECT_SET, &count, &offset);
-    H5::DataSpace memory_space(1, &count);
+    file_space.selectHyperslab(H5S_SELECT_SET, block, offset);
+    H5::DataSpace memory_space(rank, block);
     dataset.write(buffers_[k].data(), H5::PredType::NATIVE_DOUBLE, memory_space, file_space);
     buffers_[k].clear();
   }

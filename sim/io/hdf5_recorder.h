@@ -24,12 +24,14 @@ struct RecordMetadata {
 };
 
 // Writes a run to one HDF5 file: /time plus one dataset per output channel, grouped by
-// component (/muscle/force, ...), each with a `units` attribute; /inputs describes every
-// prescribed signal; root attributes carry the version, git commit, resolved config, seed and
-// solver statistics. Datasets are chunked, shuffled and deflated, and written chunk by chunk,
-// so memory stays bounded however long the run. The file is written as "<out>.partial" and
-// renamed to <out> only when complete; a failed run is kept as "<out stem>.failed.h5" with
-// status = "failed" and the reason.
+// component (/muscle/force, ...), each with a `units` attribute; the members of a bundle share
+// one (time x member) dataset per output (/b/temperature, /b/drive/power) with a `members`
+// attribute naming the columns, and their fixed facts (/b/centre_x) a value per member; /inputs
+// describes every prescribed signal; root attributes carry the version, git commit, resolved
+// config, seed and solver statistics. Datasets are chunked, shuffled and deflated, and written
+// chunk by chunk, so memory stays bounded however long the run. The file is written as
+// "<out>.partial" and renamed to <out> only when complete; a failed run is kept as "<out
+// stem>.failed.h5" with status = "failed" and the reason.
 class Hdf5Recorder final : public OutputSink {
  public:
   // The record of a run of `system` in `context` (prepared: its signals are the run's).
@@ -49,6 +51,8 @@ class Hdf5Recorder final : public OutputSink {
 
  private:
   struct File;
+  void write_inputs(const System& system, const Context& context);
+  void write_member_properties(const System& system);
   void flush();
   void close_with(const std::string& status, const std::string& reason,
                   const SolverStatistics& statistics);
@@ -56,8 +60,10 @@ class Hdf5Recorder final : public OutputSink {
   std::string path_;
   std::unique_ptr<File> file_;
   std::size_t chunk_samples_;
-  std::vector<int> signal_indices_;           // which signals go to which dataset
-  std::vector<std::vector<double>> buffers_;  // [0] is time
+  static constexpr std::size_t kBufferedValues = std::size_t{1} << 20;
+  std::vector<std::vector<int>> columns_;     // per dataset, its signals ([0], time: none)
+  std::vector<std::vector<double>> buffers_;  // per dataset, rows of its columns ([0] is time)
+  std::size_t flush_rows_ = 1;
   std::size_t written_ = 0;
   bool closed_ = false;
 };
