@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "models/bundle/bundle_kind.h"
 #include "models/hanging_mass.h"
 #include "models/imposed_load.h"
 #include "models/joint_load.h"
@@ -21,10 +22,20 @@ struct Held {
 };
 
 std::vector<Held> held_muscles(const ConfigNode& node, ScenarioBuilder& build) {
-  node.declare({"type", "muscle", "muscles", "deflection", "force", "mass", "gravity", "damping",
-                "initial_deflection", "initial_velocity", "load_cell_resolution",
+  node.declare({"type", "muscle", "muscles", "bundle", "deflection", "force", "mass", "gravity",
+                "damping", "initial_deflection", "initial_velocity", "load_cell_resolution",
                 "position_resolution"});
   std::vector<Held> held;
+  if (const auto bundle = node.find("bundle")) {
+    for (const char* other : {"muscle", "muscles"}) {
+      if (node.has(other))
+        node.at(other).fail("give either 'bundle' or '" + std::string(other) + "', not both");
+    }
+    const auto& instance = build.linked(node, "bundle", kBundleCategory);
+    for (const auto& member : build.facts<BundleFacts>(instance.name)->members)
+      held.push_back({member, *build.facts<MuscleFacts>(member)});
+    return held;
+  }
   for (const auto* muscle : build.linked_all(node, "muscle", "muscles", kMuscleCategory))
     held.push_back({muscle->name, *build.facts<MuscleFacts>(muscle->name)});
   return held;
@@ -131,8 +142,8 @@ std::string example(const std::string& load) {
 
 void register_load_kinds(KindRegistry& kinds) {
   kinds.add_category({kLoadCategory, "loads", "type", "",
-                      "what holds the muscles (muscle: <name>, or muscles: [names]; the only "
-                      "muscle by default)",
+                      "what holds the muscles (muscle: <name>, muscles: [names], or a bundle's: "
+                      "bundle: <name>; the only muscle by default)",
                       "", 60});
   kinds.add({kLoadCategory,
              "deflection",

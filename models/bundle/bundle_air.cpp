@@ -1,0 +1,100 @@
+#include "models/bundle/bundle_air.h"
+
+#include "models/laws/packing.h"
+#include "sim/context.h"
+
+namespace tcpmsim {
+
+namespace {
+using P = BundleAirParameters;
+}  // namespace
+
+BundleAir::BundleAir(std::string group, BundleAirParameters defaults,
+                     ParameterBindings<BundleAirParameters> bindings,
+                     std::unique_ptr<Signal> fan_speed)
+    : ParametricComponent(std::move(group), "bundle_air", defaults, std::move(bindings)),
+      fan_speed_(std::move(fan_speed)) {}
+
+std::unique_ptr<BundleAir> BundleAir::from_config(const std::string& group, const ConfigNode& node,
+                                                  const SignalContext& signals) {
+  node.declare({"shielding", "contact_conductance", "fan"});
+  P p;
+  ParameterBindings<P> bind;
+  bind.quantity(node, "shielding", "1", ValueCheck::fraction(), p, bind.member(&P::shielding));
+  bind.quantity_or(node, "contact_conductance", "W/K", 0.0, ValueCheck::non_negative(), p,
+                   bind.member(&P::contact_conductance));
+  std::unique_ptr<Signal> speed;
+  if (const auto fan = node.find("fan")) {
+    fan->declare({"conductance", "speed"});
+    bind.quantity(*fan, "conductance", "W/K", ValueCheck::non_negative(), p,
+                  bind.member(&P::fan_conductance));
+    const ConfigNode speed_node = fan->at("speed");
+    speed = read_signal(speed_node, "1", signals);
+    const auto [low, high] = speed->range(0.0, signals.duration);
+    if (low < 0.0 || high > 1.0)
+      speed_node.fail("expected a fan speed between 0 (off) and 1 (full)");
+  }
+  return std::make_unique<BundleAir>(group, p, std::move(bind), std::move(speed));
+}
+
+std::vector<SignalDeclaration> BundleAir::signals() const {
+  if (!fan_speed_) return {};
+  return {{"fan_speed", "1", fan_speed_.get()}};
+}
+
+void BundleAir::compute_outputs(const Evaluation& evaluation) const {
+  set_output(evaluation, kFanSpeed,
+             fan_speed_ ? signal(evaluation, 0).value(evaluation.signal_time) : 0.0);
+}
+
+double BundleAir::next_breakpoint_after(const Evaluation& evaluation) const {
+  return fan_speed_ ? signal(evaluation, 0).next_breakpoint_after(evaluation.time) : kNoBreakpoint;
+}
+
+namespace {
+struct ExchangeRun final : RunState {
+  double contact_conductance = 0.0;
+  double fan_conductance = 0.0;  // f G_f for this member
+};
+}  // namespace
+
+PackedHeatExchange::PackedHeatExchange(std::string group, const BundleAir& air, int neighbours,
+                                       int coordination)
+    : Component(std::move(group), "packed_heat_exchange"),
+      air_(air),
+      neighbours_(neighbours),
+      coordination_(coordination) {}
+
+std::vector<OutputDeclaration> PackedHeatExchange::outputs() const {
+  return {{"to_neighbours", "W"}, {"to_fan", "W"}};
+}
+
+std::vector<InputDeclaration> PackedHeatExchange::inputs() const {
+  return {{"temperature", true},
+          {"neighbour_temperatures", true, false, InputArity::many},
+          {"ambient_temperature", true},
+          {"fan_speed", true}};
+}
+
+std::unique_ptr<RunState> PackedHeatExchange::create_run_state(const RunSetup& setup) const {
+  auto run = std::make_unique<ExchangeRun>();
+  const BundleAirParameters air = air_.parameters_in(setup.context);
+  run->contact_conductance = air.contact_conductance;
+  run->fan_conductance =
+      packing::exposed_fraction(neighbours_, coordination_, air.shielding) * air.fan_conductance;
+  return run;
+}
+
+void PackedHeatExchange::compute_outputs(const Evaluation& evaluation) const {
+  const auto& run = run_state<ExchangeRun>(evaluation);
+  const double temperature = input(evaluation, kTemperature);
+  double difference = 0.0;
+  for (int k = 0; k < source_count(kNeighbourTemperatures); ++k)
+    difference += temperature - input(evaluation, kNeighbourTemperatures, k);
+  set_output(evaluation, kToNeighbours, run.contact_conductance * difference);
+  set_output(evaluation, kToFan,
+             run.fan_conductance * input(evaluation, kFanSpeed) *
+                 (temperature - input(evaluation, kAmbientTemperature)));
+}
+
+}  // namespace tcpmsim

@@ -1,0 +1,185 @@
+#include "models/bundle/bundle_kind.h"
+
+#include <iomanip>
+#include <optional>
+#include <sstream>
+
+#include "models/bundle/bundle_air.h"
+#include "models/bundle/bundle_supply.h"
+#include "models/bundle/parameter_spread.h"
+#include "models/laws/packing.h"
+#include "models/muscle.h"
+#include "sim/scenario_builder.h"
+
+namespace tcpmsim {
+
+namespace {
+
+// The drive category is registered by the controllers; a bundle builds its members' drives by
+// that name, through the registry.
+constexpr const char* kDriveCategory = "drive";
+
+// "m0" ... "m9", "m00" ... "m18": as many digits as the largest index needs.
+std::vector<std::string> member_ids(int count) {
+  const int digits = std::max(1, static_cast<int>(std::to_string(count - 1).size()));
+  std::vector<std::string> ids;
+  for (int k = 0; k < count; ++k) {
+    std::ostringstream id;
+    id << 'm' << std::setw(digits) << std::setfill('0') << k;
+    ids.push_back(id.str());
+  }
+  return ids;
+}
+
+BundleCrossSection read_cross_section(const ConfigNode& node, int count) {
+  node.declare({"layout", "pitch"});
+  const PackingLayout layout = node.choice("layout", {"hexagonal", "square"}) == "square"
+                                   ? PackingLayout::square
+                                   : PackingLayout::hexagonal;
+  return packing::cross_section(layout, count, node.quantity("pitch", "m", ValueCheck::positive()));
+}
+
+struct Bundle {
+  std::string name;
+  std::vector<std::string> members;  // instance names "b/m00"
+  BundleCrossSection section;
+};
+
+// Member k's packed convection and its exchange with its neighbours and the fan.
+void couple_heat(const Bundle& bundle, std::size_t k, const BundleAir& air,
+                 const ParameterSpread& spread, SystemBuilder& system) {
+  const std::string& member = bundle.members[k];
+  const auto& neighbours = bundle.section.neighbours[k];
+  const int coordination = bundle.section.coordination();
+  auto& exchange = system.add(std::make_unique<PackedHeatExchange>(
+      member + "/packing", air, static_cast<int>(neighbours.size()), coordination));
+  system.connect(exchange, "temperature", member + ".temperature");
+  for (const int other : neighbours) {
+    system.connect(exchange, "neighbour_temperatures",
+                   bundle.members[static_cast<std::size_t>(other)] + ".temperature");
+  }
+  system.connect(exchange, "ambient_temperature", member + ".ambient_temperature");
+  system.connect(exchange, "fan_speed", bundle.name + "/air.fan_speed");
+  system.connect(member + ".heat_loss", member + "/packing.to_neighbours");
+  system.connect(member + ".heat_loss", member + "/packing.to_fan");
+  const double spread_factor = spread.factor("thermal.conductance", k);
+  const int count = static_cast<int>(neighbours.size());
+  derive_scaled(
+      system, member + ".thermal.conductance",
+      [&air, count, coordination, spread_factor](const Context& context) {
+        const double shielding = air.parameters_in(context).shielding;
+        return packing::exposed_fraction(count, coordination, shielding) * spread_factor;
+      },
+      "the muscle section's conductance times the exposed fraction 1 - shielding * " +
+          std::to_string(count) + "/" + std::to_string(coordination) +
+          (spread.has("thermal.conductance") ? " and the member's spread factor" : ""));
+}
+
+void wire_members(const ConfigNode& node, const Bundle& bundle, ScenarioBuilder& build) {
+  node.declare({"wiring", "drive"});
+  const std::string wiring = node.choice("wiring", {"individual", "series", "parallel"});
+  SystemBuilder& system = build.system();
+  if (wiring == "individual") {
+    const ConfigNode drive = node.at("drive");
+    if (drive.has("muscle"))
+      drive.at("muscle").fail("each member's drive heats its own muscle; remove 'muscle'");
+    const Kind& kind = build.kinds().select(kDriveCategory, drive);
+    for (const auto& member : bundle.members) {
+      drive.name_parameters(member + "/drive");
+      build.build_member(kDriveCategory, member + "/drive", drive, kind,
+                         {{kMuscleCategory, member}});
+    }
+    return;
+  }
+  if (node.has("drive"))
+    node.at("drive").fail("one supply feeds a " + wiring +
+                          " bundle; 'drive' is for wiring: individual");
+  const BundleWiring circuit = wiring == "series" ? BundleWiring::series : BundleWiring::parallel;
+  const std::string supply = bundle.name + "/supply";
+  auto& source = system.add(BundleSupply::from_config(supply, node, circuit, build.signals()));
+  for (const auto& member : bundle.members) {
+    auto& wire = system.add(std::make_unique<MemberWire>(member + "/wire", circuit));
+    system.connect(source, "resistance", member + ".resistance");
+    system.connect(wire, "resistance", member + ".resistance");
+    system.connect(wire, "bundle_voltage", supply + ".voltage");
+    system.connect(wire, "bundle_current", supply + ".current");
+    system.connect(member + ".power", member + "/wire.power");
+  }
+}
+
+void build_bundle(const ConfigNode& node, const std::string& name, ScenarioBuilder& build) {
+  node.declare({"count", "packing", "muscle", "spread", "thermal", "electrical"});
+  const int count = static_cast<int>(node.integer("count", ValueCheck::between(1, 100000)));
+  Bundle bundle{name, {}, read_cross_section(node.at("packing"), count)};
+  const auto ids = member_ids(count);
+  for (const auto& id : ids) bundle.members.push_back(name + "/" + id);
+
+  SystemBuilder& system = build.system();
+  const auto& air =
+      system.add(BundleAir::from_config(name + "/air", node.at("thermal"), build.signals()));
+  const ConfigNode muscle = node.at("muscle");
+  const Kind& kind = build.kinds().select(kMuscleCategory, muscle);
+  std::optional<ParameterSpread> spread;
+  for (std::size_t k = 0; k < bundle.members.size(); ++k) {
+    const std::string& member = bundle.members[k];
+    muscle.name_parameters(member);
+    build.build_member(kMuscleCategory, member, muscle, kind, {});
+    if (!build.facts<MuscleFacts>(member)->thermal.heat_balance) {
+      muscle.at("thermal_force")
+          .fail("a bundle's muscles exchange heat: give them a thermal node (form: physical)");
+    }
+    if (!spread) {
+      spread = ParameterSpread::from_config(node.find("spread"), name, ids.size(), member,
+                                            build.settings().seed, system);
+    }
+    couple_heat(bundle, k, air, *spread, system);
+    spread->apply(k, member, system, {"thermal.conductance"});
+  }
+  wire_members(node.at("electrical"), bundle, build);
+  MemberSet set{name, ids, {}};
+  std::vector<double> x, y, neighbours;
+  for (std::size_t k = 0; k < bundle.members.size(); ++k) {
+    x.push_back(bundle.section.centres[k][0]);
+    y.push_back(bundle.section.centres[k][1]);
+    neighbours.push_back(static_cast<double>(bundle.section.neighbours[k].size()));
+  }
+  set.properties = {{"centre_x", "m", x}, {"centre_y", "m", y}, {"neighbours", "1", neighbours}};
+  system.declare_members(std::move(set));
+  build.publish(name, BundleFacts{bundle.members});
+}
+
+const char* kExample = R"(scenario: {name: bundle_example, duration: 60 s, seed: 5}
+output: {rate: 2 Hz}
+bundle:
+  count: 7
+  packing: {layout: hexagonal, pitch: 1.2 mm}
+  muscle:
+    thermal: {heat_capacity: 0.05 J/K, conductance: 2 mW/K, ambient_temperature: 23 degC}
+    thermal_force: {form: physical, force_per_kelvin: 4 mN/K, reference_temperature: 23 degC}
+    mechanics: {k1: 10.8e-3 N/mm, k2: 2.7e-3 N/mm, damping: 4.3e-3 N*s/mm, force_offset: 0.1 N}
+    resistance: {form: thermal, resistance: 9.4 ohm, temperature_coefficient: 6.41e-3 1/K, reference_temperature: 23 degC}
+    inductance: {lambda_l: 107.4 uH*mm, lambda_x: 61 mm, lambda_0: 2.67 uH}
+  spread: {mechanics.k1: {distribution: normal, relative: 0.05}, resistance.resistance: {distribution: uniform, relative: 0.02}}
+  thermal: {shielding: 0.6, contact_conductance: 0.5 mW/K, fan: {conductance: 4 mW/K, speed: 0.5}}
+  electrical: {wiring: parallel, voltage: 2 V, series_resistance: 0.1 ohm, energy_accounting: true}
+load: {type: deflection, bundle: bundle, deflection: 20 mm}
+)";
+
+}  // namespace
+
+void register_bundle_kind(KindRegistry& kinds) {
+  kinds.add_category({kBundleCategory, "bundles", "", "",
+                      "muscles in parallel between common end plates (a load holds them with "
+                      "bundle: <name>): packed, heat-coupled, wired to one supply or each to "
+                      "its own drive, with a seeded spread of their parameters",
+                      "", 25});
+  kinds.add({kBundleCategory,
+             "parallel",
+             "n muscles side by side (hexagonal or square packing); inner ones shielded "
+             "from convection, touching ones exchanging heat, an optional fan; wired in series "
+             "or parallel to one supply (voltage, current or power) or each to its own drive",
+             {{kExample, "bundle"}},
+             InstanceBuilder(build_bundle)});
+}
+
+}  // namespace tcpmsim
