@@ -316,6 +316,7 @@ TEST_CASE("A bundle records each output once, as a (time x member) matrix naming
       bundle_yaml(12,
                   "  packing: {layout: square, pitch: 1.5 mm}\n"
                   "  thermal: {shielding: 0.3}\n"
+                  "  spread: {mechanics.k1: {distribution: normal, relative: 0.1}}\n"
                   "  electrical: {wiring: individual, drive: {mode: power, power: 0.05 W}}\n",
                   10.0));
   const std::string path = (std::filesystem::temp_directory_path() / "tcpmsim_bundle.h5").string();
@@ -342,6 +343,15 @@ TEST_CASE("A bundle records each output once, as a (time x member) matrix naming
   const auto section = packing::cross_section(PackingLayout::square, 12, 1.5e-3);
   for (std::size_t k = 0; k < 12; ++k)
     CHECK(neighbours[k] == static_cast<double>(section.neighbours[k].size()));
+  // So are the members' spread factors, which make their parameters.
+  std::vector<double> factors(12);
+  file.openDataSet("/bundle/spread.mechanics.k1").read(factors.data(), H5::PredType::NATIVE_DOUBLE);
+  Context context = scenario.make_context();
+  scenario.system->prepare(context);
+  for (std::size_t k = 0; k < 12; ++k) {
+    const std::string id = (k < 10 ? "m0" : "m") + std::to_string(k);
+    CHECK(context.parameter("bundle/" + id + ".mechanics.k1") == 10.8 * factors[k]);
+  }
   CHECK(!file.nameExists("/bundle/m00"));
   // The members' alike signals are described once.
   CHECK(file.nameExists("/inputs/bundle/drive.power"));

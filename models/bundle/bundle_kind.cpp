@@ -144,6 +144,8 @@ void build_bundle(const ConfigNode& node, const std::string& name, ScenarioBuild
     neighbours.push_back(static_cast<double>(bundle.section.neighbours[k].size()));
   }
   set.properties = {{"centre_x", "m", x}, {"centre_y", "m", y}, {"neighbours", "1", neighbours}};
+  for (const auto& [key, factors] : spread->factors())
+    set.properties.push_back({"spread." + key, "1", factors});
   system.declare_members(std::move(set));
   build.publish(name, BundleFacts{bundle.members});
 }

@@ -35,6 +35,8 @@ class ParameterSpread {
   bool has(const std::string& key) const { return factors_.count(key) > 0; }
   // Member k's factor for `key`; 1 for a key without spread.
   double factor(const std::string& key, std::size_t member) const;
+  // Every key's factors, member by member.
+  const std::map<std::string, std::vector<double>>& factors() const { return factors_; }
   // Makes `member`'s spread parameters follow the muscle section times its factors, except
   // the keys in `handled` (which the caller scales with more than the spread).
   void apply(std::size_t k, const std::string& member, SystemBuilder& system,
