@@ -147,15 +147,24 @@ void ScenarioBuilder::build_member(const std::string& category, const std::strin
     if (!by_name_.count(member))
       throw std::logic_error("member " + name + " links to no instance named '" + member + "'");
   }
+  // The member's parameters are its own ("b/m03.mechanics.k1"); afterwards the shared section
+  // names no member's, so that a --set of its keys rebuilds every member instead of reaching
+  // the last one built.
+  const std::string shared = node.parameter_path();
   const auto saved = member_links_;
   for (const auto& [linked_category, member] : links) member_links_[linked_category] = member;
+  node.name_parameters(name);
+  auto restore = [&] {
+    member_links_ = saved;
+    node.name_parameters(shared);
+  };
   try {
     kinds_.builder<InstanceBuilder>(kind)(node, name, *this);
   } catch (...) {
-    member_links_ = saved;
+    restore();
     throw;
   }
-  member_links_ = saved;
+  restore();
 }
 
 void ScenarioBuilder::run_checks() const {

@@ -63,8 +63,10 @@ class ScenarioBuilder {
   // Builds an instance that is part of another one (a bundle's member muscle "b/m003", its
   // drive "b/m003/drive") from a section the other instance holds (a template): `kind`'s builder
   // runs with `links` answering the link keys the section leaves out ({muscle: "b/m003"}), and the
-  // member can be linked to by name afterwards. Members do not count as "the only" instance of
-  // their category, and their names, which hold a slash, cannot collide with declared ones.
+  // member can be linked to by name afterwards. The section's parameters are the member's while
+  // it is built ("b/m03.mechanics.k1"), and nobody's after. Members do not count as "the only"
+  // instance of their category, and their names, which hold a slash, cannot collide with declared
+  // ones.
   void build_member(const std::string& category, const std::string& name, const ConfigNode& node,
                     const Kind& kind, const std::map<std::string, std::string>& links);
 

@@ -254,6 +254,9 @@ void System::collect_parameters(const SystemBuilder& builder) {
   for (const auto& pending : builder.derivations_) {
     const auto index = parameter_index(pending.path);
     if (!index) throw std::logic_error("no parameter '" + pending.path + "' to derive");
+    // One rule per parameter: a second would silently replace the first.
+    if (!parameters_[static_cast<std::size_t>(*index)].derived_from.empty())
+      throw std::logic_error("two rules derive the parameter '" + pending.path + "'");
     parameters_[static_cast<std::size_t>(*index)].derived_from = pending.explanation;
     derivations_.push_back({*index, pending.rule});
   }

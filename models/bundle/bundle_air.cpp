@@ -7,13 +7,21 @@ namespace tcpmsim {
 
 namespace {
 using P = BundleAirParameters;
+
+// What is wrong with a fan speed over [0, duration], or "".
+std::string fan_speed_problem(const Signal& speed, double duration) {
+  const auto [low, high] = speed.range(0.0, duration);
+  if (low < 0.0 || high > 1.0) return "expected a fan speed between 0 (off) and 1 (full)";
+  return {};
+}
 }  // namespace
 
 BundleAir::BundleAir(std::string group, BundleAirParameters defaults,
                      ParameterBindings<BundleAirParameters> bindings,
-                     std::unique_ptr<Signal> fan_speed)
+                     std::unique_ptr<Signal> fan_speed, double duration)
     : ParametricComponent(std::move(group), "bundle_air", defaults, std::move(bindings)),
-      fan_speed_(std::move(fan_speed)) {}
+      fan_speed_(std::move(fan_speed)),
+      duration_(duration) {}
 
 std::unique_ptr<BundleAir> BundleAir::from_config(const std::string& group, const ConfigNode& node,
                                                   const SignalContext& signals) {
@@ -30,16 +38,21 @@ std::unique_ptr<BundleAir> BundleAir::from_config(const std::string& group, cons
                   bind.member(&P::fan_conductance));
     const ConfigNode speed_node = fan->at("speed");
     speed = read_signal(speed_node, "1", signals);
-    const auto [low, high] = speed->range(0.0, signals.duration);
-    if (low < 0.0 || high > 1.0)
-      speed_node.fail("expected a fan speed between 0 (off) and 1 (full)");
+    if (const std::string problem = fan_speed_problem(*speed, signals.duration); !problem.empty())
+      speed_node.fail(problem);
   }
-  return std::make_unique<BundleAir>(group, p, std::move(bind), std::move(speed));
+  return std::make_unique<BundleAir>(group, p, std::move(bind), std::move(speed), signals.duration);
 }
 
 std::vector<SignalDeclaration> BundleAir::signals() const {
   if (!fan_speed_) return {};
   return {{"fan_speed", "1", fan_speed_.get()}};
+}
+
+std::string BundleAir::check_parameters(const RunSetup& setup) const {
+  if (!fan_speed_) return {};
+  const std::string problem = fan_speed_problem(signal(setup.context, 0), duration_);
+  return problem.empty() ? problem : "fan.speed: " + problem;
 }
 
 void BundleAir::compute_outputs(const Evaluation& evaluation) const {
@@ -58,12 +71,8 @@ struct ExchangeRun final : RunState {
 };
 }  // namespace
 
-PackedHeatExchange::PackedHeatExchange(std::string group, const BundleAir& air, int neighbours,
-                                       int coordination)
-    : Component(std::move(group), "packed_heat_exchange"),
-      air_(air),
-      neighbours_(neighbours),
-      coordination_(coordination) {}
+PackedHeatExchange::PackedHeatExchange(std::string group, const BundleAir& air, int coordination)
+    : Component(std::move(group), "packed_heat_exchange"), air_(air), coordination_(coordination) {}
 
 std::vector<OutputDeclaration> PackedHeatExchange::outputs() const {
   return {{"to_neighbours", "W"}, {"to_fan", "W"}};
@@ -80,14 +89,18 @@ std::unique_ptr<RunState> PackedHeatExchange::create_run_state(const RunSetup& s
   auto run = std::make_unique<ExchangeRun>();
   const BundleAirParameters air = air_.parameters_in(setup.context);
   run->contact_conductance = air.contact_conductance;
-  run->fan_conductance =
-      packing::exposed_fraction(neighbours_, coordination_, air.shielding) * air.fan_conductance;
+  run->fan_conductance = packing::exposed_fraction(source_count(kNeighbourTemperatures),
+                                                   coordination_, air.shielding) *
+                         air.fan_conductance;
   return run;
 }
 
 void PackedHeatExchange::compute_outputs(const Evaluation& evaluation) const {
   const auto& run = run_state<ExchangeRun>(evaluation);
   const double temperature = input(evaluation, kTemperature);
+  // G_c sum_j (T - T_j), difference by difference: n T - sum T_j would cancel ~300 K values
+  // and leave rounding where neighbours are equal, so the bundle would no longer conserve heat
+  // exactly.
   double difference = 0.0;
   for (int k = 0; k < source_count(kNeighbourTemperatures); ++k)
     difference += temperature - input(evaluation, kNeighbourTemperatures, k);

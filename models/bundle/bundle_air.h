@@ -23,18 +23,22 @@ class BundleAir final : public ParametricComponent<BundleAirParameters> {
  public:
   enum Output { kFanSpeed };
   BundleAir(std::string group, BundleAirParameters defaults,
-            ParameterBindings<BundleAirParameters> bindings, std::unique_ptr<Signal> fan_speed);
+            ParameterBindings<BundleAirParameters> bindings, std::unique_ptr<Signal> fan_speed,
+            double duration);
   // Keys shielding, contact_conductance, fan: {conductance, speed} (no fan: none).
   static std::unique_ptr<BundleAir> from_config(const std::string& group, const ConfigNode& node,
                                                 const SignalContext& signals);
 
   std::vector<OutputDeclaration> outputs() const override { return {{"fan_speed", "1"}}; }
   std::vector<SignalDeclaration> signals() const override;
+  // A run's fan speed stays in [0, 1].
+  std::string check_parameters(const RunSetup& setup) const override;
   void compute_outputs(const Evaluation& evaluation) const override;
   double next_breakpoint_after(const Evaluation& evaluation) const override;
 
  private:
   std::unique_ptr<Signal> fan_speed_;  // none without a fan
+  double duration_;                    // of the scenario, over which the speed is checked
 };
 
 // One member's heat exchange inside the bundle, a heat-loss term of its thermal node:
@@ -46,9 +50,9 @@ class PackedHeatExchange final : public Component {
  public:
   enum Input { kTemperature, kNeighbourTemperatures, kAmbientTemperature, kFanSpeed };
   enum Output { kToNeighbours, kToFan };
-  // The member has `neighbours` touching muscles of the `coordination` an inner one has; it
-  // reads the air's parameters as the run context sets them.
-  PackedHeatExchange(std::string group, const BundleAir& air, int neighbours, int coordination);
+  // Its touching muscles are the sources of neighbour_temperatures, of the `coordination` an
+  // inner one has; it reads the air's parameters as the run context sets them.
+  PackedHeatExchange(std::string group, const BundleAir& air, int coordination);
 
   std::vector<OutputDeclaration> outputs() const override;
   std::vector<InputDeclaration> inputs() const override;
@@ -57,7 +61,6 @@ class PackedHeatExchange final : public Component {
 
  private:
   const BundleAir& air_;
-  int neighbours_;
   int coordination_;
 };
 

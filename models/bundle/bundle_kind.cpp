@@ -51,8 +51,8 @@ void couple_heat(const Bundle& bundle, std::size_t k, const BundleAir& air,
   const std::string& member = bundle.members[k];
   const auto& neighbours = bundle.section.neighbours[k];
   const int coordination = bundle.section.coordination();
-  auto& exchange = system.add(std::make_unique<PackedHeatExchange>(
-      member + "/packing", air, static_cast<int>(neighbours.size()), coordination));
+  auto& exchange =
+      system.add(std::make_unique<PackedHeatExchange>(member + "/packing", air, coordination));
   system.connect(exchange, "temperature", member + ".temperature");
   for (const int other : neighbours) {
     system.connect(exchange, "neighbour_temperatures",
@@ -85,7 +85,6 @@ void wire_members(const ConfigNode& node, const Bundle& bundle, ScenarioBuilder&
       drive.at("muscle").fail("each member's drive heats its own muscle; remove 'muscle'");
     const Kind& kind = build.kinds().select(kDriveCategory, drive);
     for (const auto& member : bundle.members) {
-      drive.name_parameters(member + "/drive");
       build.build_member(kDriveCategory, member + "/drive", drive, kind,
                          {{kMuscleCategory, member}});
     }
@@ -122,7 +121,6 @@ void build_bundle(const ConfigNode& node, const std::string& name, ScenarioBuild
   std::optional<ParameterSpread> spread;
   for (std::size_t k = 0; k < bundle.members.size(); ++k) {
     const std::string& member = bundle.members[k];
-    muscle.name_parameters(member);
     build.build_member(kMuscleCategory, member, muscle, kind, {});
     if (!build.facts<MuscleFacts>(member)->thermal.heat_balance) {
       muscle.at("thermal_force")

@@ -5,16 +5,24 @@ namespace tcpmsim {
 namespace {
 using P = BundleSupplyParameters;
 constexpr const char* kSourceUnit[] = {"V", "A", "W"};
+
+// What is wrong with the source over [0, duration], or "": a power cannot be negative.
+std::string source_problem(SupplyMode mode, const Signal& source, double duration) {
+  if (mode == SupplyMode::power && source.range(0.0, duration).first < 0.0)
+    return "expected a power that stays at or above 0 W";
+  return {};
+}
 }  // namespace
 
 BundleSupply::BundleSupply(std::string group, BundleWiring wiring, SupplyMode mode,
                            BundleSupplyParameters defaults,
                            ParameterBindings<BundleSupplyParameters> bindings,
-                           std::unique_ptr<Signal> source, bool energy_accounting)
+                           std::unique_ptr<Signal> source, double duration, bool energy_accounting)
     : ParametricComponent(std::move(group), "bundle_supply", defaults, std::move(bindings)),
       wiring_(wiring),
       mode_(mode),
       source_(std::move(source)),
+      duration_(duration),
       energy_accounting_(energy_accounting) {}
 
 std::unique_ptr<BundleSupply> BundleSupply::from_config(const std::string& group,
@@ -38,15 +46,15 @@ std::unique_ptr<BundleSupply> BundleSupply::from_config(const std::string& group
                                                   : "power";
   const ConfigNode source_node = node.at(key);
   auto source = read_signal(source_node, kSourceUnit[static_cast<int>(mode)], signals);
-  if (mode == SupplyMode::power && source->range(0.0, signals.duration).first < 0.0)
-    source_node.fail("expected a power that stays at or above 0 W");
+  if (const std::string problem = source_problem(mode, *source, signals.duration); !problem.empty())
+    source_node.fail(problem);
   P p;
   ParameterBindings<P> bind;
   bind.quantity_or(node, "series_resistance", "ohm", 0.0, ValueCheck::non_negative(), p,
                    bind.member(&P::series_resistance));
   const bool accounting = node.boolean_or("energy_accounting", false);
   return std::make_unique<BundleSupply>(group, wiring, mode, p, std::move(bind), std::move(source),
-                                        accounting);
+                                        signals.duration, accounting);
 }
 
 std::vector<StateDeclaration> BundleSupply::states() const {
@@ -70,6 +78,11 @@ std::vector<InputDeclaration> BundleSupply::inputs() const {
 
 std::vector<SignalDeclaration> BundleSupply::signals() const {
   return {{"source", kSourceUnit[static_cast<int>(mode_)], source_.get()}};
+}
+
+std::string BundleSupply::check_parameters(const RunSetup& setup) const {
+  const std::string problem = source_problem(mode_, signal(setup.context, 0), duration_);
+  return problem.empty() ? problem : "power: " + problem;
 }
 
 void BundleSupply::initialize(const Evaluation&, std::span<double> own_state) const {

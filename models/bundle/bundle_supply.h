@@ -25,17 +25,18 @@ class BundleSupply final : public ParametricComponent<BundleSupplyParameters> {
   enum Output { kVoltage, kCurrent, kPower, kSourcePower, kEnergy, kSeriesHeat };
   BundleSupply(std::string group, BundleWiring wiring, SupplyMode mode,
                BundleSupplyParameters defaults, ParameterBindings<BundleSupplyParameters> bindings,
-               std::unique_ptr<Signal> source, bool energy_accounting);
+               std::unique_ptr<Signal> source, double duration, bool energy_accounting);
   // Keys: one of voltage / current / power (a signal), series_resistance, energy_accounting.
   static std::unique_ptr<BundleSupply> from_config(const std::string& group, const ConfigNode& node,
                                                    BundleWiring wiring,
                                                    const SignalContext& signals);
 
-  BundleWiring wiring() const { return wiring_; }
   std::vector<StateDeclaration> states() const override;
   std::vector<OutputDeclaration> outputs() const override;
   std::vector<InputDeclaration> inputs() const override;
   std::vector<SignalDeclaration> signals() const override;
+  // A run's power stays at or above 0 W.
+  std::string check_parameters(const RunSetup& setup) const override;
   void initialize(const Evaluation& evaluation, std::span<double> own_state) const override;
   void compute_outputs(const Evaluation& evaluation) const override;
   void compute_derivatives(const Evaluation& evaluation, double* derivatives) const override;
@@ -49,6 +50,7 @@ class BundleSupply final : public ParametricComponent<BundleSupplyParameters> {
   BundleWiring wiring_;
   SupplyMode mode_;
   std::unique_ptr<Signal> source_;
+  double duration_;  // of the scenario, over which the source is checked
   bool energy_accounting_;
 };
 

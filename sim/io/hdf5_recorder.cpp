@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <map>
 
 #include "sim/io/hdf5_files.h"
 #include "sim/io/record_layout.h"
@@ -15,7 +14,6 @@ namespace tcpmsim {
 
 struct Hdf5Recorder::File {
   H5::H5File file;
-  std::map<std::string, H5::Group> groups;
   std::vector<H5::DataSet> datasets;  // [0] is /time
 };
 
@@ -28,11 +26,11 @@ void write_scalar(H5::H5Object& object, const std::string& name, const H5::PredT
   attribute.write(type, &value);
 }
 
-// A series of `columns` numbers per time: 1-D for one, time x column for more. A 2-D chunk holds
-// about as many numbers as a 1-D one.
+// A series of one number per time (1-D), or of a member set's `columns` (time x column, even for
+// one member). A 2-D chunk holds about as many numbers as a 1-D one.
 H5::DataSet create_series(H5::Group& parent, const std::string& name, const std::string& units,
-                          std::size_t chunk, std::size_t columns) {
-  const int rank = columns == 1 ? 1 : 2;
+                          std::size_t chunk, std::size_t columns, bool matrix) {
+  const int rank = matrix ? 2 : 1;
   const hsize_t initial[2] = {0, columns}, maximum[2] = {H5S_UNLIMITED, columns};
   const hsize_t chunk_size[2] = {std::max<hsize_t>(1, chunk / columns), columns};
   H5::DataSpace space(rank, initial, maximum);
@@ -45,11 +43,13 @@ H5::DataSet create_series(H5::Group& parent, const std::string& name, const std:
   return dataset;
 }
 
-void write_array(H5::Group& parent, const std::string& name, const std::vector<double>& values) {
+H5::DataSet write_array(H5::Group& parent, const std::string& name,
+                        const std::vector<double>& values) {
   const hsize_t size = values.size();
   H5::DataSet dataset =
       parent.createDataSet(name, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(1, &size));
   if (!values.empty()) dataset.write(values.data(), H5::PredType::NATIVE_DOUBLE);
+  return dataset;
 }
 
 void write_description(H5::Group& group, const SignalDescription& description) {
@@ -85,14 +85,15 @@ void write_statistics(H5::H5Object& root, const SolverStatistics& statistics) {
   write_scalar(root, "samples", type, std::int64_t{statistics.output_samples});
 }
 
-// The group at `path` ("/inputs/b/drive.power"), with the groups above it.
-H5::Group create_groups(H5::H5File& file, const std::string& path) {
+// The group at `path` ("/muscle/maxwell_branch", "/inputs/b/drive.power"), created with the
+// groups above it where they do not exist yet.
+H5::Group group_at(H5::H5File& file, const std::string& path) {
   for (std::size_t slash = path.find('/', 1); slash != std::string::npos;
        slash = path.find('/', slash + 1)) {
     const std::string parent = path.substr(0, slash);
     if (!file.nameExists(parent)) file.createGroup(parent);
   }
-  return file.createGroup(path);
+  return file.nameExists(path) ? file.openGroup(path) : file.createGroup(path);
 }
 
 }  // namespace
@@ -122,20 +123,13 @@ Hdf5Recorder::Hdf5Recorder(std::string path, const System& system, const Context
   write_scalar(root, "output_interval", H5::PredType::NATIVE_DOUBLE, metadata.output_interval);
   write_scalar(root, "duration", H5::PredType::NATIVE_DOUBLE, metadata.duration);
 
-  file_->datasets.push_back(create_series(root, "time", "s", chunk_samples_, 1));
+  file_->datasets.push_back(create_series(root, "time", "s", chunk_samples_, 1, false));
   columns_.emplace_back();
   for (auto& series : record_layout(system)) {
     // A part's group sits inside its instance's ("/muscle/maxwell_branch").
-    for (std::size_t slash = series.group.find('/'); slash != std::string::npos;
-         slash = series.group.find('/', slash + 1)) {
-      const std::string parent = series.group.substr(0, slash);
-      if (!file_->groups.count(parent))
-        file_->groups[parent] = file_->file.createGroup("/" + parent);
-    }
-    auto [entry, created] = file_->groups.try_emplace(series.group);
-    if (created) entry->second = file_->file.createGroup("/" + series.group);
-    H5::DataSet dataset = create_series(entry->second, series.name, series.unit, chunk_samples_,
-                                        series.signal_indices.size());
+    H5::Group group = group_at(file_->file, "/" + series.group);
+    H5::DataSet dataset = create_series(group, series.name, series.unit, chunk_samples_,
+                                        series.signal_indices.size(), !series.members.empty());
     if (!series.members.empty()) write_text_array_attribute(dataset, "members", series.members);
     file_->datasets.push_back(dataset);
     columns_.push_back(std::move(series.signal_indices));
@@ -157,10 +151,8 @@ Hdf5Recorder::Hdf5Recorder(std::string path, const System& system, const Context
 void Hdf5Recorder::write_member_properties(const System& system) {
   for (const auto& set : system.member_sets()) {
     for (const auto& property : set.properties) {
-      auto [entry, created] = file_->groups.try_emplace(set.name);
-      if (created) entry->second = file_->file.createGroup("/" + set.name);
-      write_array(entry->second, property.name, property.values);
-      H5::DataSet dataset = entry->second.openDataSet(property.name);
+      H5::Group group = group_at(file_->file, "/" + set.name);
+      H5::DataSet dataset = write_array(group, property.name, property.values);
       write_text_attribute(dataset, "units", property.unit);
       write_text_array_attribute(dataset, "members", set.members);
     }
@@ -173,7 +165,7 @@ void Hdf5Recorder::write_inputs(const System& system, const Context& context) {
   file_->file.createGroup("/inputs");
   const auto& slots = system.signal_slots();
   auto write = [&](const std::string& path, int slot) {
-    H5::Group group = create_groups(file_->file, "/inputs/" + path);
+    H5::Group group = group_at(file_->file, "/inputs/" + path);
     write_text_attribute(group, "units", slots[static_cast<std::size_t>(slot)].unit);
     write_description(group, context.signal(slot).describe());
     return group;
@@ -191,11 +183,10 @@ void Hdf5Recorder::write_inputs(const System& system, const Context& context) {
       write_text_array_attribute(group, "members", entry.members);
       continue;
     }
-    const auto dot = entry.path.find('.');
-    const auto slash = entry.path.find('/');
-    const std::string set = entry.path.substr(0, std::min(dot, slash));
-    for (std::size_t k = 0; k < entry.members.size(); ++k)
-      write(set + "/" + entry.members[k] + entry.path.substr(set.size()), entry.slots[k]);
+    for (const int slot : entry.slots) {
+      const SignalSlot& own = slots[static_cast<std::size_t>(slot)];
+      write(own.group + "." + own.name, slot);
+    }
   }
 }
 
@@ -226,7 +217,7 @@ void Hdf5Recorder::flush() {
   for (std::size_t k = 0; k < buffers_.size(); ++k) {
     H5::DataSet& dataset = file_->datasets[k];
     const hsize_t columns = k == 0 ? 1 : columns_[k].size();
-    const int rank = columns == 1 ? 1 : 2;
+    const int rank = dataset.getSpace().getSimpleExtentNdims();
     const hsize_t extent[2] = {total, columns}, offset[2] = {written_, 0},
                   block[2] = {count, columns};
     dataset.extend(extent);
