@@ -30,10 +30,12 @@ int main(int argc, char** argv) {
   const auto units = std::make_shared<tcpmsim::UnitSystem>();
   std::vector<double> seconds;
   tcpmsim::SolverStatistics statistics;
+  int states = 0;
   for (int k = 0; k < repeats; ++k) {
     tcpmsim::Scenario scenario = tcpmsim::load_scenario(argv[1], overrides, units);
     KeepEverything sink;
     sink.values.reserve(1 << 20);
+    states = scenario.system->state_size();
     tcpmsim::Context context = scenario.make_context();
     tcpmsim::Integrator integrator(*scenario.system, context, scenario.solver);
     const auto started = std::chrono::steady_clock::now();
@@ -46,8 +48,8 @@ int main(int argc, char** argv) {
   std::sort(seconds.begin(), seconds.end());
   std::printf(
       "median_seconds=%.6g min_seconds=%.6g steps=%ld rhs=%ld jacobians=%ld segments=%ld "
-      "samples=%ld\n",
+      "samples=%ld states=%d\n",
       seconds[seconds.size() / 2], seconds.front(), statistics.steps, statistics.rhs_evaluations,
-      statistics.jacobian_evaluations, statistics.segments, statistics.output_samples);
+      statistics.jacobian_evaluations, statistics.segments, statistics.output_samples, states);
   return 0;
 }

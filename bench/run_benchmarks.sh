@@ -41,3 +41,5 @@ echo "the floor, bare CVODE on the same two states restarted at every 20 Hz samp
 for method in bdf adams; do
   echo "  $method: $("$build_dir/bench/bench_cvode_restart_floor" $method 1000 5)"
 done
+echo "== bundles of 1 to 1000 muscles on their own Muscle Drives, sparse against dense (targets: KLU exponent <= 1.1, 1000 muscles x 100 s < 10 s, linear memory)"
+/usr/bin/python3 bench/bench_bundle_scaling.py "$build_dir" bench/bundle_scaling.yaml

@@ -47,6 +47,13 @@ struct detail::CvodeHandles {
   std::vector<std::vector<int>> column_groups;
   std::vector<double> perturbed;
   std::vector<double> perturbed_derivatives;
+  bool warm_restarts = false;
+  std::vector<double> carried_jacobian;  // the pattern's entries, column by column
+  bool offer_carried_jacobian = false;
+  long carried_jacobians = 0;  // handed back since the last count: CVODE counts them as new
+  long steps = 0;              // over the whole run, across restarts
+  long jacobian_step = -1;     // `steps` when the carried Jacobian was computed; -1: none yet
+  double restart_step = 0.0;   // the first step a warm restart tries (0: CVODE's estimate)
   std::vector<int> event_flags;
   std::vector<double> configured_tolerances;
   std::vector<double> adapted_tolerances;
@@ -154,17 +161,83 @@ void write_structure(const SparsityPattern& pattern, SUNMatrix matrix) {
   column_start[pattern.size] = entry;
 }
 
-// Column-grouped finite differences into the sparse (CSC) matrix KLU factors.
-int sparse_jacobian(realtype t, N_Vector y, N_Vector fy, SUNMatrix jacobian, void* user_data,
-                    N_Vector, N_Vector, N_Vector) {
+// Entry k of a column of the pattern (row pattern.rows_of_column[column][k]) in whichever
+// matrix CVODE hands over: sparse (the pattern's own CSC layout), dense or band.
+class PatternSlots {
+ public:
+  PatternSlots(const SparsityPattern& pattern, SUNMatrix matrix)
+      : pattern_(pattern), matrix_(matrix), id_(SUNMatGetID(matrix)) {
+    if (id_ == SUNMATRIX_SPARSE) {
+      write_structure(pattern, matrix);
+      data_ = SUNSparseMatrix_Data(matrix);
+      column_start_ = SUNSparseMatrix_IndexPointers(matrix);
+    }
+  }
+  double& at(int column, std::size_t k) const {
+    const int row = pattern_.rows_of_column[static_cast<std::size_t>(column)][k];
+    switch (id_) {
+      case SUNMATRIX_SPARSE:
+        return data_[column_start_[column] + static_cast<sunindextype>(k)];
+      case SUNMATRIX_BAND:
+        return SM_ELEMENT_B(matrix_, row, column);
+      default:
+        return SM_ELEMENT_D(matrix_, row, column);
+    }
+  }
+
+ private:
+  const SparsityPattern& pattern_;
+  SUNMatrix matrix_;
+  SUNMatrix_ID id_;
+  double* data_ = nullptr;
+  const sunindextype* column_start_ = nullptr;
+};
+
+// The Jacobian by finite differences over groups of structurally orthogonal columns
+// (Curtis-Powell-Reid), into any matrix kind. With warm restarts it keeps the values, and the
+// first call of a segment (CVODE asks at every restart) gets the last Jacobian back: a stale
+// Jacobian only slows the modified Newton iteration, and if that fails CVODE asks again with
+// CV_FAIL_OTHER and gets a fresh one. A Jacobian is carried for at most CVODE's own reuse
+// limit of steps (msbj), counted across restarts, as if no restart had happened.
+constexpr long kJacobianReuseSteps = 51;
+
+enum class CarryDirection { into_matrix, from_matrix };
+
+// The carried Jacobian holds the pattern's entries column by column.
+void copy_carried(detail::CvodeHandles& cv, const PatternSlots& slots, CarryDirection direction) {
+  cv.carried_jacobian.resize(static_cast<std::size_t>(cv.pattern.non_zeros()));
+  auto value = cv.carried_jacobian.begin();
+  for (int column = 0; column < cv.pattern.size; ++column) {
+    const std::size_t rows = cv.pattern.rows_of_column[static_cast<std::size_t>(column)].size();
+    for (std::size_t k = 0; k < rows; ++k, ++value) {
+      if (direction == CarryDirection::into_matrix)
+        slots.at(column, k) = *value;
+      else
+        *value = slots.at(column, k);
+    }
+  }
+}
+
+int grouped_jacobian(realtype t, N_Vector y, N_Vector fy, SUNMatrix jacobian, void* user_data,
+                     N_Vector, N_Vector, N_Vector) {
   auto& cv = cvode_of(user_data);
+  const PatternSlots slots(cv.pattern, jacobian);
+  long convergence_failures = 0;
+  CVodeGetNumNonlinSolvConvFails(cv.memory, &convergence_failures);
+  // Offered until the segment's first step or Newton's first failure: a retry after an error
+  // test failure (a smaller first step) keeps it, a convergence failure gets a fresh one.
+  cv.offer_carried_jacobian = cv.offer_carried_jacobian && convergence_failures == 0;
+  const bool carry = cv.offer_carried_jacobian && cv.jacobian_step >= 0 &&
+                     cv.steps - cv.jacobian_step < kJacobianReuseSteps;
+  if (carry) {
+    ++cv.carried_jacobians;
+    copy_carried(cv, slots, CarryDirection::into_matrix);
+    return 0;
+  }
   const double* state = N_VGetArrayPointer(y);
   const double* base = N_VGetArrayPointer(fy);
   const double* absolute = cv.adapted_tolerances.data();
   const double* relative = cv.relative_tolerances.data();
-  write_structure(cv.pattern, jacobian);
-  double* data = SUNSparseMatrix_Data(jacobian);
-  const sunindextype* column_start = SUNSparseMatrix_IndexPointers(jacobian);
   const double root_epsilon = std::sqrt(std::numeric_limits<double>::epsilon());
   std::copy(state, state + cv.pattern.size, cv.perturbed.begin());
   for (const auto& group : cv.column_groups) {
@@ -178,15 +251,28 @@ int sparse_jacobian(realtype t, N_Vector y, N_Vector fy, SUNMatrix jacobian, voi
     for (int column : group) {
       const auto c = static_cast<std::size_t>(column);
       const double increment = cv.perturbed[c] - state[column];
-      sunindextype entry = column_start[column];
-      for (int row : cv.pattern.rows_of_column[c]) {
-        data[entry++] =
-            (cv.perturbed_derivatives[static_cast<std::size_t>(row)] - base[row]) / increment;
+      const auto& rows = cv.pattern.rows_of_column[c];
+      for (std::size_t k = 0; k < rows.size(); ++k) {
+        const auto row = static_cast<std::size_t>(rows[k]);
+        slots.at(column, k) = (cv.perturbed_derivatives[row] - base[row]) / increment;
       }
       cv.perturbed[c] = state[column];
     }
   }
+  if (cv.warm_restarts) {
+    cv.jacobian_step = cv.steps;
+    copy_carried(cv, slots, CarryDirection::from_matrix);
+  }
   return 0;
+}
+
+// The pattern is fixed for the whole run, so KLU's symbolic analysis (the fill-reducing
+// ordering) is kept across CVodeReInit, which would otherwise redo it at every breakpoint. KLU
+// then refactors with the pivot order it has and, when its condition estimate says that order
+// went bad, factors afresh by itself.
+int initialize_keeping_klu_analysis(SUNLinearSolver solver) {
+  if (SUNLinSol_KLUGetSymbolic(solver) != nullptr) return SUNLS_SUCCESS;
+  return SUNLinSolInitialize_KLU(solver);
 }
 
 void capture_error(int, const char* module, const char* function, char* message, void* user_data) {
@@ -198,6 +284,20 @@ void check(int flag, const char* call) {
     throw std::runtime_error(std::string("CVODE setup failed in ") + call + ": " +
                              CVodeGetReturnFlagName(flag));
   }
+}
+
+// The step a warm restart tries first, learnt from the last restart: the step CVODE proposed
+// after that segment's first step if it passed the error test at once, else the (reduced) step
+// that passed, so a too-bold proposal is not repeated at every breakpoint.
+double first_step_after_restart(void* memory) {
+  long error_test_failures = 0;
+  double step = 0.0;
+  check(CVodeGetNumErrTestFails(memory, &error_test_failures), "CVodeGetNumErrTestFails");
+  if (error_test_failures == 0)
+    check(CVodeGetCurrentStep(memory, &step), "CVodeGetCurrentStep");
+  else
+    check(CVodeGetLastStep(memory, &step), "CVodeGetLastStep");
+  return step;
 }
 
 }  // namespace
@@ -236,35 +336,43 @@ Integrator::~Integrator() = default;
 void Integrator::attach_linear_solver() {
   auto& cv = *cvode_;
   const int size = system_.state_size();
+  cv.warm_restarts = settings_.restart == RestartKind::warm;
+  // Our grouped Jacobian for KLU, and for every matrix kind with warm restarts (which carry
+  // it); CVODE's own difference quotients for dense and band otherwise.
+  const bool grouped = settings_.linear_solver == LinearSolverKind::klu || cv.warm_restarts;
+  if (grouped || settings_.linear_solver == LinearSolverKind::band)
+    cv.pattern = system_.jacobian_pattern();
+  if (grouped) {
+    cv.column_groups = cv.pattern.column_groups();
+    cv.perturbed.assign(static_cast<std::size_t>(size), 0.0);
+    cv.perturbed_derivatives.assign(static_cast<std::size_t>(size), 0.0);
+  }
   switch (settings_.linear_solver) {
     case LinearSolverKind::dense:
       cv.matrix = SUNDenseMatrix(size, size, cv.sundials);
       cv.linear_solver = SUNLinSol_Dense(cv.state, cv.matrix, cv.sundials);
       break;
-    case LinearSolverKind::band: {
-      const SparsityPattern pattern = system_.jacobian_pattern();
-      cv.matrix =
-          SUNBandMatrix(size, pattern.upper_bandwidth(), pattern.lower_bandwidth(), cv.sundials);
+    case LinearSolverKind::band:
+      cv.matrix = SUNBandMatrix(size, cv.pattern.upper_bandwidth(), cv.pattern.lower_bandwidth(),
+                                cv.sundials);
       cv.linear_solver = SUNLinSol_Band(cv.state, cv.matrix, cv.sundials);
       break;
-    }
-    case LinearSolverKind::klu: {
-      cv.pattern = system_.jacobian_pattern();
-      cv.column_groups = cv.pattern.column_groups();
-      cv.perturbed.assign(static_cast<std::size_t>(size), 0.0);
-      cv.perturbed_derivatives.assign(static_cast<std::size_t>(size), 0.0);
+    case LinearSolverKind::klu:
       cv.matrix = SUNSparseMatrix(size, size, cv.pattern.non_zeros(), CSC_MAT, cv.sundials);
       write_structure(cv.pattern, cv.matrix);
       cv.linear_solver = SUNLinSol_KLU(cv.state, cv.matrix, cv.sundials);
+      if (cv.linear_solver) {
+        // AMD on A + A^T: the patterns here are (nearly) structurally symmetric, and for a
+        // packed bundle's thermal network it fills a fifth less than KLU's default COLAMD.
+        check(SUNLinSol_KLUSetOrdering(cv.linear_solver, 0), "SUNLinSol_KLUSetOrdering");
+        cv.linear_solver->ops->initialize = initialize_keeping_klu_analysis;
+      }
       break;
-    }
   }
   if (!cv.matrix || !cv.linear_solver)
     throw std::runtime_error("could not create the linear solver");
   check(CVodeSetLinearSolver(cv.memory, cv.linear_solver, cv.matrix), "CVodeSetLinearSolver");
-  if (settings_.linear_solver == LinearSolverKind::klu) {
-    check(CVodeSetJacFn(cv.memory, sparse_jacobian), "CVodeSetJacFn");
-  }
+  if (grouped) check(CVodeSetJacFn(cv.memory, grouped_jacobian), "CVodeSetJacFn");
 }
 
 void Integrator::accumulate_statistics() {
@@ -282,6 +390,8 @@ void Integrator::accumulate_statistics() {
   add(CVodeGetNumNonlinSolvConvFails, cv.memory, statistics_.nonlinear_convergence_failures);
   if (settings_.method == IntegrationMethod::bdf) {
     add(CVodeGetNumJacEvals, cv.memory, statistics_.jacobian_evaluations);
+    statistics_.jacobian_evaluations -= cv.carried_jacobians;  // computed ones only
+    cv.carried_jacobians = 0;
     add(CVodeGetNumLinRhsEvals, cv.memory, statistics_.rhs_evaluations_for_jacobian);
   }
 }
@@ -355,6 +465,16 @@ void Integrator::start_segment(double start, bool first) {
   } else {
     accumulate_statistics();  // CVodeReInit zeroes CVODE's counters
     check(CVodeReInit(cv.memory, start, cv.state), "CVodeReInit");
+    if (cv.warm_restarts) {
+      // A breakpoint changes inputs, not the time scales of the state: the new segment starts
+      // with the last Jacobian and with the first step the last restart got accepted (order 1
+      // after a discontinuity), instead of CVODE's estimate from scratch.
+      cv.offer_carried_jacobian = true;
+      if (cv.restart_step > 0.0)
+        check(CVodeSetInitStep(cv.memory, cv.restart_step), "CVodeSetInitStep");
+      refresh_tolerances();
+      return;
+    }
   }
   if (settings_.initial_step > 0)
     check(CVodeSetInitStep(cv.memory, settings_.initial_step), "CVodeSetInitStep");
@@ -388,6 +508,7 @@ SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output, Ou
     cv.segment_end = stop - time_margin(stop);
     ++statistics_.segments;
     collapsed_steps = 0;  // a restart's first steps are small by design
+    const long segment_first_step = steps_taken + 1;
     double reached = t;
     while (reached < stop) {
       cv.rhs_problem.clear();
@@ -400,7 +521,12 @@ SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output, Ou
         system_.at_events(context_, reached, cv.signal_time(reached), state, cv.event_flags.data());
         refresh_tolerances();
       }
-      if (++steps_taken > settings_.max_steps) {
+      cv.steps = ++steps_taken;
+      if (steps_taken == segment_first_step) {
+        cv.restart_step = first_step_after_restart(cv.memory);
+        cv.offer_carried_jacobian = false;
+      }
+      if (steps_taken > settings_.max_steps) {
         throw failure("more than " + std::to_string(settings_.max_steps) +
                       " solver steps (raise solver.max_steps if this is expected)");
       }

@@ -24,13 +24,20 @@ enum class LinearSolverKind { dense, band, klu };
 // ones (an undamped winding chain, whose every mode must be resolved anyway).
 enum class IntegrationMethod { bdf, adams };
 
+// What a restart at a breakpoint keeps. Cold: CVODE starts afresh (its own initial step
+// estimate and a new Jacobian). Warm: the new segment starts from the last step size and the
+// last Jacobian (recomputed as soon as the Newton iteration fails). Either way KLU keeps its
+// symbolic analysis, since the pattern never changes.
+enum class RestartKind { cold, warm };
+
 struct SolverSettings {
   double relative_tolerance = 1e-6;
   std::vector<double> absolute_tolerances;  // one per state; empty: the states' defaults
   IntegrationMethod method = IntegrationMethod::bdf;
   LinearSolverKind linear_solver = LinearSolverKind::dense;  // BDF's Newton iteration only
-  double max_step = 0.0;                                     // 0: no limit
-  double initial_step = 0.0;                                 // 0: CVODE's estimate
+  RestartKind restart = RestartKind::cold;
+  double max_step = 0.0;      // 0: no limit
+  double initial_step = 0.0;  // 0: CVODE's estimate
   long max_steps = 50'000'000;
 };
 

@@ -54,6 +54,16 @@ void read_absolute_tolerances(const ConfigNode& solver, const System& system,
   }
 }
 
+// Warm restarts are the default with KLU, the solver for large systems, where a restart's fresh
+// Jacobian and step estimate dominate. Dense and band stay cold unless asked: their records
+// were validated that way, and a default not written into the resolved config keeps them.
+std::string read_restart(const ConfigNode& solver, LinearSolverKind linear_solver) {
+  const std::vector<std::string> options{"cold", "warm"};
+  if (linear_solver == LinearSolverKind::klu) return solver.choice_or("restart", options, "warm");
+  if (const auto given = solver.find("restart")) return given->as_choice(options);
+  return "cold";
+}
+
 SolverSettings read_solver(const ConfigNode& root, const System& system) {
   SolverSettings settings;
   const auto solver = root.find("solver");
@@ -62,8 +72,8 @@ SolverSettings read_solver(const ConfigNode& root, const System& system) {
       settings.absolute_tolerances.push_back(state.absolute_tolerance);
     return settings;
   }
-  solver->declare(
-      {"method", "rtol", "atol", "linear_solver", "max_step", "initial_step", "max_steps"});
+  solver->declare({"method", "rtol", "atol", "linear_solver", "restart", "max_step", "initial_step",
+                   "max_steps"});
   settings.method = solver->choice_or("method", {"bdf", "adams"}, "bdf") == "adams"
                         ? IntegrationMethod::adams
                         : IntegrationMethod::bdf;
@@ -73,6 +83,8 @@ SolverSettings read_solver(const ConfigNode& root, const System& system) {
   settings.linear_solver = kind == "band"  ? LinearSolverKind::band
                            : kind == "klu" ? LinearSolverKind::klu
                                            : LinearSolverKind::dense;
+  settings.restart = read_restart(*solver, settings.linear_solver) == "warm" ? RestartKind::warm
+                                                                             : RestartKind::cold;
   settings.max_step = solver->quantity_or("max_step", "s", 0.0, ValueCheck::non_negative());
   settings.initial_step = solver->quantity_or("initial_step", "s", 0.0, ValueCheck::non_negative());
   settings.max_steps = solver->integer_or("max_steps", settings.max_steps, ValueCheck::at_least(1));

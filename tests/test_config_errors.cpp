@@ -111,6 +111,10 @@ TEST_CASE("A choice outside its options suggests the nearest one") {
   CHECK(error_of(replaced(kValid, "linear_solver: dense", "linear_solver: dens")) ==
         "test.yaml:3:39: error: solver.linear_solver: expected one of dense, band, klu, got 'dens' "
         "(did you mean 'dense'?)");
+  // With any linear solver, not only with KLU (where the default is read with the others).
+  CHECK(error_of(replaced(kValid, "linear_solver: dense", "linear_solver: dense, restart: warn")) ==
+        "test.yaml:3:55: error: solver.restart: expected one of cold, warm, got 'warn' "
+        "(did you mean 'warm'?)");
 }
 
 TEST_CASE("Broken YAML is reported at its position") {

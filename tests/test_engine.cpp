@@ -166,6 +166,37 @@ TEST_CASE("Dense, band and KLU linear solvers give the same trajectory") {
   CHECK(klu.statistics.jacobian_evaluations > 0);
 }
 
+TEST_CASE("Warm restarts follow the cold trajectory to within the integration error") {
+  // A closed loop restarted at every 20 Hz sample (the Muscle Drive, the estimator, the PID),
+  // without the timer's quantisation, noise and spikes: a rounding-level change then stays one
+  // instead of flipping a quantised reading. Warm restarts carry the step size and the Jacobian
+  // over each breakpoint; what they change is the error the tolerance allows, not the solution.
+  const std::vector<std::string> common{
+      "scenario.duration=60 s", "solver.rtol=1e-8", "drive.measurement.timer_resolution=0 s",
+      "drive.measurement.timing_noise=0 s", "drive.measurement.spike_probability=0"};
+  auto run = [&](const std::string& solver, const std::string& restart) {
+    std::vector<std::string> overrides = common;
+    overrides.push_back("solver.linear_solver=" + solver);
+    overrides.push_back("solver.restart=" + restart);
+    return simulate(load_scenario(source_path("configs/ch7_control/deflection_steps.yaml"),
+                                  overrides, shared_units()));
+  };
+  const Trace cold = run("dense", "cold"), warm = run("dense", "warm"), klu = run("klu", "warm");
+  REQUIRE(cold.statistics.segments > 1000);
+  // 50 rtol times the scales: 0.5 N of force, 30 mm of deflection.
+  for (const Trace* other : {&warm, &klu}) {
+    CHECK(max_abs_difference(cold["muscle/force"], (*other)["muscle/force"]) < 50 * 1e-8 * 0.5);
+    CHECK(max_abs_difference(cold["muscle/deflection"], (*other)["muscle/deflection"]) <
+          50 * 1e-8 * 30e-3);
+  }
+  // Cold computes a Jacobian at every restart; warm only every 51 steps (CVODE's reuse limit),
+  // and starts each segment at the last step size instead of estimating one from scratch.
+  CHECK(cold.statistics.jacobian_evaluations >= cold.statistics.segments);
+  CHECK(warm.statistics.jacobian_evaluations * 5 < cold.statistics.jacobian_evaluations);
+  CHECK(warm.statistics.jacobian_evaluations >= warm.statistics.steps / 102);
+  CHECK(warm.statistics.rhs_evaluations < cold.statistics.rhs_evaluations);
+}
+
 TEST_CASE(
     "Outputs are sampled on the uniform grid, including the end, without a solver stop per "
     "sample") {

@@ -1,0 +1,76 @@
+#!/usr/bin/env python3
+"""Scaling of a bundle with its size (issue 10): time per simulated second and peak memory for
+n = 1, 10, 100 and 1000 muscles, each on its own averaged Muscle Drive (bench/bundle_scaling.yaml),
+with the sparse (KLU) and the dense solver, and the growth exponents fitted from n = 10 to 1000.
+
+Every case runs in its own process (bench_integration: the integration alone, timed in-process;
+the minimum of the repeats) so that its peak resident memory is its own (wait4). Both solvers use
+warm restarts, so the comparison is of the linear algebra alone. The dense solver factors a
+2n x 2n matrix at every setup, so its larger cases simulate a shorter time; the rate is per
+simulated second either way. Outputs are kept every 10 s only, so that the peak memory is the
+model's and the solver's rather than the samples'. No assertions: the figures are printed for
+the README."""
+import math
+import os
+import subprocess
+import sys
+
+SIZES = (1, 10, 100, 1000)
+# Simulated seconds per case: the whole scenario where it is affordable.
+DURATION = {"klu": {1: 100, 10: 100, 100: 100, 1000: 100},
+            "dense": {1: 100, 10: 100, 100: 10, 1000: 0.05}}
+REPEATS = {1: 3, 10: 3, 100: 3, 1000: 2}
+
+
+def run_case(bench, config, solver, n):
+    duration = DURATION[solver][n]
+    repeats = 1 if solver == "dense" and n == 1000 else REPEATS[n]
+    command = [bench, config, str(repeats), f"bundle.count={n}", f"solver.linear_solver={solver}",
+               "solver.restart=warm", f"scenario.duration={duration} s", "output.rate=0.1 Hz"]
+    process = subprocess.Popen(command, stdout=subprocess.PIPE, text=True)
+    output = process.stdout.read()
+    _, status, usage = os.wait4(process.pid, 0)
+    if status != 0:
+        sys.exit(f"{' '.join(command)} failed (status {status})")
+    fields = dict(item.split("=") for item in output.split())
+    return {"per_second": float(fields["min_seconds"]) / duration,
+            "states": int(fields["states"]),
+            "jacobians": int(fields["jacobians"]),
+            "peak_mb": usage.ru_maxrss / 1024.0}
+
+
+def slope(xs, ys):
+    """Least-squares slope of log y against log x."""
+    lx = [math.log(x) for x in xs]
+    ly = [math.log(y) for y in ys]
+    mx, my = sum(lx) / len(lx), sum(ly) / len(ly)
+    return sum((a - mx) * (b - my) for a, b in zip(lx, ly)) / sum((a - mx) ** 2 for a in lx)
+
+
+def main():
+    build = sys.argv[1] if len(sys.argv) > 1 else "build"
+    config = sys.argv[2] if len(sys.argv) > 2 else "bench/bundle_scaling.yaml"
+    bench = os.path.join(build, "bench", "bench_integration")
+    results = {solver: {n: run_case(bench, config, solver, n) for n in SIZES}
+               for solver in ("klu", "dense")}
+    print("| muscles | states | KLU: s per simulated s | dense: s per simulated s | dense / KLU "
+          "| KLU peak memory (MB) |")
+    print("|---:|---:|---:|---:|---:|---:|")
+    for n in SIZES:
+        klu, dense = results["klu"][n], results["dense"][n]
+        print(f"| {n} | {klu['states']} | {klu['per_second']:.3g} | {dense['per_second']:.3g} "
+              f"| {dense['per_second'] / klu['per_second']:.3g} | {klu['peak_mb']:.1f} |")
+    large = SIZES[1:]
+    for solver in ("klu", "dense"):
+        exponent = slope(large, [results[solver][n]["per_second"] for n in large])
+        print(f"{solver}: time per simulated second grows as n^{exponent:.2f} from n = 10 to 1000")
+    peaks = [results["klu"][n]["peak_mb"] for n in SIZES]
+    print("KLU peak memory per added muscle (kB): " + ", ".join(
+        f"{SIZES[k - 1]} to {SIZES[k]}: {(peaks[k] - peaks[k - 1]) / (SIZES[k] - SIZES[k - 1]) * 1024:.0f}"
+        for k in range(2, len(SIZES))) + " (the first includes the allocator's start-up)")
+    thousand = results["klu"][1000]["per_second"] * 100
+    print(f"1000 muscles, 100 s simulated: {thousand:.2f} s of integration (target < 10 s)")
+
+
+if __name__ == "__main__":
+    main()
