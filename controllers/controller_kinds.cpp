@@ -1,6 +1,7 @@
 #include "controllers/controller_kinds.h"
 
 #include "controllers/controller_facts.h"
+#include "controllers/fan_controller.h"
 #include "controllers/joint_controller_kind.h"
 #include "controllers/joule_drive.h"
 #include "controllers/muscle_drive.h"
@@ -185,6 +186,7 @@ void register_controller_kinds(KindRegistry& kinds) {
              {{kSelfSensingScenario, "controller"}},
              InstanceBuilder(build_controller)});
   register_joint_angle_controller(kinds);
+  register_fan_controller(kinds);
 }
 
 }  // namespace tcpmsim

@@ -100,12 +100,8 @@ std::unique_ptr<RunState> JointAngleController::create_run_state(const RunSetup&
 }
 
 std::string JointAngleController::check_parameters(const RunSetup& setup) const {
-  try {
-    DiscretePid check(bindings_.assign(defaults_, own_parameters(setup)).pid, setup.parameters[0]);
-  } catch (const std::exception& error) {
-    return error.what();
-  }
-  return {};
+  return pid_settings_problem(bindings_.assign(defaults_, own_parameters(setup)).pid,
+                              setup.parameters[0]);
 }
 
 void JointAngleController::compute_outputs(const Evaluation& evaluation) const {

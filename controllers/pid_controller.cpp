@@ -118,6 +118,14 @@ PidController::PidController(std::string group, Target target, PidSettings setti
 void read_pid_settings(const ConfigNode& node, std::string_view gain_unit, PidSettings& s,
                        ParameterBindings<PidSettings>& bind) {
   using P = PidSettings;
+  read_pid_gains(node, gain_unit, s, bind);
+  bind.interval(node, "power_limits", "W", ValueCheck::non_negative(), s,
+                bind.member(&P::power_min), bind.member(&P::power_max));
+}
+
+void read_pid_gains(const ConfigNode& node, std::string_view gain_unit, PidSettings& s,
+                    ParameterBindings<PidSettings>& bind) {
+  using P = PidSettings;
   const ConfigNode gains = node.at("gains");
   gains.declare({"proportional", "integral_time", "derivative_time"});
   bind.quantity(
@@ -130,8 +138,6 @@ void read_pid_settings(const ConfigNode& node, std::string_view gain_unit, PidSe
                 [](P& v) -> double& { return v.gains.integral_time; });
   bind.quantity_or(gains, "derivative_time", "s", 0.0, ValueCheck::non_negative(), s,
                    [](P& v) -> double& { return v.gains.derivative_time; });
-  bind.interval(node, "power_limits", "W", ValueCheck::non_negative(), s,
-                bind.member(&P::power_min), bind.member(&P::power_max));
   s.anti_windup = node.boolean_or("anti_windup", true);
   s.derivative = node.choice_or("derivative_on", {"error", "measurement"}, "error") == "measurement"
                      ? PidSettings::Derivative::measurement
@@ -183,13 +189,18 @@ std::unique_ptr<RunState> PidController::create_run_state(const RunSetup& setup)
                                setup.parameters[0]);
 }
 
-std::string PidController::check_parameters(const RunSetup& setup) const {
+std::string pid_settings_problem(const PidSettings& settings, double period) {
   try {
-    DiscretePid check(bindings_.assign(defaults_, own_parameters(setup)), setup.parameters[0]);
+    DiscretePid check(settings, period);
   } catch (const std::exception& error) {
     return error.what();
   }
   return {};
+}
+
+std::string PidController::check_parameters(const RunSetup& setup) const {
+  return pid_settings_problem(bindings_.assign(defaults_, own_parameters(setup)),
+                              setup.parameters[0]);
 }
 
 void PidController::compute_outputs(const Evaluation& evaluation) const {

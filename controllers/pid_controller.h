@@ -89,12 +89,18 @@ class DiscretePid {
   double previous_estimate_ = 0.0;
 };
 
+// What DiscretePid would refuse in these settings and period, or "".
+std::string pid_settings_problem(const PidSettings& settings, double period);
+
 // The keys of the discrete law: gains {proportional (in gain_unit), integral_time,
 // derivative_time (optional, 0 s)}, power_limits [P_min, P_max], and optional anti_windup
 // (true) and derivative_on (error | measurement; error). Shared by every controller built on
 // DiscretePid.
 void read_pid_settings(const ConfigNode& node, std::string_view gain_unit, PidSettings& settings,
                        ParameterBindings<PidSettings>& bindings);
+// The same without power_limits, for a law whose command has fixed limits (a fan's speed).
+void read_pid_gains(const ConfigNode& node, std::string_view gain_unit, PidSettings& settings,
+                    ParameterBindings<PidSettings>& bindings);
 
 // A sampled PID controller of the muscle's deflection or force through self-sensing (thesis
 // 7.2.4). Input "estimate" (sampled): x^ or F^ from the estimator of the same instant. Outputs

@@ -504,3 +504,68 @@ TEST_CASE("A run cannot give a bundle's supply a negative power or its fan a spe
   fast.set_parameter("bundle.thermal.fan.speed", 1.5);
   CHECK_THROWS_WITH(scenario.system->prepare(fast), Catch::Contains("fan speed between 0"));
 }
+
+namespace {
+// One muscle (nothing shields it) heated with a constant power P, its fan (G_f) under a fan
+// controller at the reference T_amb + rise.
+std::string cooled_bundle(int count, double rise, const std::string& measure = "hottest",
+                          const std::string& fan = "speed: controller") {
+  return bundle_yaml(count,
+                     "  packing: {layout: hexagonal, pitch: 1.5 mm}\n"
+                     "  thermal: {shielding: 0.6, fan: {conductance: 4 mW/K, " +
+                         fan +
+                         "}}\n"
+                         "  electrical: {wiring: individual, drive: {mode: power, power: 0.2 "
+                         "W}}\n",
+                     200.0) +
+         "controller: {type: fan, bundle: bundle, measure: " + measure +
+         ", reference: " + number(kAmbient + rise) +
+         " K, gains: {proportional: 0.5 1/K, integral_time: 5 s}, sample_period: 0.1 s}\n";
+}
+}  // namespace
+
+TEST_CASE("A fan controller holds a muscle at its reference with the speed the balance asks") {
+  // Steady state: P = (hA + G_f s)(T_ref - T_amb), so s = (P / 40 K - hA) / G_f = 0.75.
+  const auto trace = simulate(cooled_bundle(1, 40.0));
+  CHECK(trace[member(0, "/temperature")].back() - kAmbient == Approx(40.0).margin(1e-6));
+  CHECK(trace["controller/fan_speed"].back() == Approx((0.2 / 40.0 - kConductance) / 4e-3));
+  CHECK(trace["bundle/air/fan_speed"].back() == trace["controller/fan_speed"].back());
+  // Heated from ambient, it starts with the fan off.
+  CHECK(trace["controller/fan_speed"].front() == 0.0);
+}
+
+TEST_CASE("An unreachable reference runs the fan at full speed, no further") {
+  // 10 K is below what full cooling reaches: T - T_amb = P / (hA + G_f) = 33.3 K.
+  const auto trace = simulate(cooled_bundle(1, 10.0));
+  CHECK(trace["controller/fan_speed"].back() == 1.0);
+  CHECK(trace[member(0, "/temperature")].back() - kAmbient ==
+        Approx(0.2 / (kConductance + 4e-3)).margin(1e-6));
+}
+
+TEST_CASE("A fan controller regulates the hottest member, or the members' mean") {
+  // The centre keeps f = 0.4 of hA and G_f: at 100 K, 0.4 (hA + G_f s) = P / 100 K, s = 0.75.
+  const auto hottest = simulate(cooled_bundle(7, 100.0));
+  // The shielded centre is the hottest; the ring stays below the reference.
+  CHECK(hottest[member(0, "/temperature")].back() - kAmbient == Approx(100.0).margin(1e-6));
+  CHECK(hottest["controller/fan_speed"].back() == Approx(0.75));
+  for (int k = 1; k < 7; ++k)
+    CHECK(hottest[member(k, "/temperature")].back() < hottest[member(0, "/temperature")].back());
+  const auto mean = simulate(cooled_bundle(7, 100.0, "mean"));
+  double sum = 0.0;
+  for (int k = 0; k < 7; ++k) sum += mean[member(k, "/temperature")].back();
+  CHECK(sum / 7.0 - kAmbient == Approx(100.0).margin(1e-6));
+  CHECK(mean["controller/measured_temperature"].back() == Approx(sum / 7.0).epsilon(1e-9));
+}
+
+TEST_CASE("A commanded fan needs exactly its controller") {
+  CHECK_THAT(config_error(bundle_yaml(2,
+                                      "  packing: {layout: square, pitch: 1.5 mm}\n"
+                                      "  thermal: {shielding: 0.3, fan: {conductance: 1 mW/K, "
+                                      "speed: controller}}\n"
+                                      "  electrical: {wiring: parallel, voltage: 1 V}\n")),
+             Catch::Contains("bundle.thermal.fan.speed: no controller commands this fan"));
+  CHECK_THAT(config_error(cooled_bundle(2, 40.0, "hottest", "speed: 0.5")),
+             Catch::Contains("controller.bundle: the fan of bundle has a prescribed speed"));
+  CHECK_THAT(config_error(cooled_bundle(2, 40.0), {"controller.gains.proportional=-0.5 1/K"}),
+             Catch::Contains("expected a positive gain"));
+}

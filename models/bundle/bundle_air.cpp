@@ -1,5 +1,7 @@
 #include "models/bundle/bundle_air.h"
 
+#include <stdexcept>
+
 #include "models/laws/packing.h"
 #include "sim/context.h"
 
@@ -17,11 +19,15 @@ std::string fan_speed_problem(const Signal& speed, double duration) {
 }  // namespace
 
 BundleAir::BundleAir(std::string group, BundleAirParameters defaults,
-                     ParameterBindings<BundleAirParameters> bindings,
+                     ParameterBindings<BundleAirParameters> bindings, Fan fan,
                      std::unique_ptr<Signal> fan_speed, double duration)
     : ParametricComponent(std::move(group), "bundle_air", defaults, std::move(bindings)),
+      fan_(fan),
       fan_speed_(std::move(fan_speed)),
-      duration_(duration) {}
+      duration_(duration) {
+  if ((fan_ == Fan::prescribed) != (fan_speed_ != nullptr))
+    throw std::invalid_argument("BundleAir: a speed signal exactly when the fan is prescribed");
+}
 
 std::unique_ptr<BundleAir> BundleAir::from_config(const std::string& group, const ConfigNode& node,
                                                   const SignalContext& signals) {
@@ -32,16 +38,26 @@ std::unique_ptr<BundleAir> BundleAir::from_config(const std::string& group, cons
   bind.quantity_or(node, "contact_conductance", "W/K", 0.0, ValueCheck::non_negative(), p,
                    bind.member(&P::contact_conductance));
   std::unique_ptr<Signal> speed;
+  Fan kind = Fan::none;
   if (const auto fan = node.find("fan")) {
     fan->declare({"conductance", "speed"});
     bind.quantity(*fan, "conductance", "W/K", ValueCheck::non_negative(), p,
                   bind.member(&P::fan_conductance));
     const ConfigNode speed_node = fan->at("speed");
-    speed = read_signal(speed_node, "1", signals);
-    if (const std::string problem = fan_speed_problem(*speed, signals.duration); !problem.empty())
-      speed_node.fail(problem);
+    kind = speed_node.is_word("controller") ? Fan::commanded : Fan::prescribed;
+    if (kind == Fan::prescribed) {
+      speed = read_signal(speed_node, "1", signals);
+      if (const std::string problem = fan_speed_problem(*speed, signals.duration); !problem.empty())
+        speed_node.fail(problem);
+    }
   }
-  return std::make_unique<BundleAir>(group, p, std::move(bind), std::move(speed), signals.duration);
+  return std::make_unique<BundleAir>(group, p, std::move(bind), kind, std::move(speed),
+                                     signals.duration);
+}
+
+std::vector<InputDeclaration> BundleAir::inputs() const {
+  if (fan_ != Fan::commanded) return {};
+  return {{"fan_command", true}};
 }
 
 std::vector<SignalDeclaration> BundleAir::signals() const {
@@ -56,8 +72,10 @@ std::string BundleAir::check_parameters(const RunSetup& setup) const {
 }
 
 void BundleAir::compute_outputs(const Evaluation& evaluation) const {
-  set_output(evaluation, kFanSpeed,
-             fan_speed_ ? signal(evaluation, 0).value(evaluation.signal_time) : 0.0);
+  double speed = 0.0;
+  if (fan_ == Fan::prescribed) speed = signal(evaluation, 0).value(evaluation.signal_time);
+  if (fan_ == Fan::commanded) speed = input(evaluation, kFanCommand);
+  set_output(evaluation, kFanSpeed, speed);
 }
 
 double BundleAir::next_breakpoint_after(const Evaluation& evaluation) const {

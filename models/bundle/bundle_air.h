@@ -10,7 +10,8 @@ namespace tcpmsim {
 
 // The air in and around a bundle of muscles (its `thermal` section): how much of a muscle's
 // free-air convection its neighbours block, the conductance between touching muscles, and a
-// fan whose speed (0 to 1) adds forced convection. The members' exchange terms
+// fan whose speed (0 to 1) adds forced convection: a prescribed signal, or (speed: controller)
+// the input "fan_command" that a controller drives. The members' exchange terms
 // (PackedHeatExchange) and their convective conductances read these from the run context, so
 // that every pair of neighbours exchanges through one value and the bundle conserves energy.
 struct BundleAirParameters {
@@ -22,22 +23,29 @@ struct BundleAirParameters {
 class BundleAir final : public ParametricComponent<BundleAirParameters> {
  public:
   enum Output { kFanSpeed };
+  enum Input { kFanCommand };
+  enum class Fan { none, prescribed, commanded };
+  // A prescribed fan has its speed signal; the others have none.
   BundleAir(std::string group, BundleAirParameters defaults,
-            ParameterBindings<BundleAirParameters> bindings, std::unique_ptr<Signal> fan_speed,
-            double duration);
-  // Keys shielding, contact_conductance, fan: {conductance, speed} (no fan: none).
+            ParameterBindings<BundleAirParameters> bindings, Fan fan,
+            std::unique_ptr<Signal> fan_speed, double duration);
+  // Keys shielding, contact_conductance, fan: {conductance, speed: <signal> | controller}
+  // (no fan: none).
   static std::unique_ptr<BundleAir> from_config(const std::string& group, const ConfigNode& node,
                                                 const SignalContext& signals);
 
   std::vector<OutputDeclaration> outputs() const override { return {{"fan_speed", "1"}}; }
+  std::vector<InputDeclaration> inputs() const override;
   std::vector<SignalDeclaration> signals() const override;
+  Fan fan() const { return fan_; }
   // A run's fan speed stays in [0, 1].
   std::string check_parameters(const RunSetup& setup) const override;
   void compute_outputs(const Evaluation& evaluation) const override;
   double next_breakpoint_after(const Evaluation& evaluation) const override;
 
  private:
-  std::unique_ptr<Signal> fan_speed_;  // none without a fan
+  Fan fan_;
+  std::unique_ptr<Signal> fan_speed_;  // a prescribed fan's
   double duration_;                    // of the scenario, over which the speed is checked
 };
 

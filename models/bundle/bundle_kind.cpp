@@ -106,6 +106,25 @@ void wire_members(const ConfigNode& node, const Bundle& bundle, ScenarioBuilder&
   }
 }
 
+// A fan with speed: controller exports its command as "<bundle>.fan_command", and the scenario
+// must have a controller that drives it.
+BundleFacts::Fan expect_fan_command(const ConfigNode& node, const std::string& name,
+                                    const BundleAir& air, ScenarioBuilder& build) {
+  if (air.fan() == BundleAir::Fan::none) return BundleFacts::Fan::none;
+  if (air.fan() == BundleAir::Fan::prescribed) return BundleFacts::Fan::prescribed;
+  SystemBuilder& system = build.system();
+  const std::string port = name + ".fan_command";
+  system.export_input(port, air, "fan_command");
+  const ConfigNode speed = node.at("thermal").at("fan").at("speed");
+  build.after_building([&system, port, speed] {
+    if (!system.is_connected(port))
+      speed.fail(
+          "no controller commands this fan: add one (type: fan, bundle: <name>) or give "
+          "the speed as a signal");
+  });
+  return BundleFacts::Fan::commanded;
+}
+
 void build_bundle(const ConfigNode& node, const std::string& name, ScenarioBuilder& build) {
   node.declare({"count", "packing", "muscle", "spread", "thermal", "electrical"});
   const int count = static_cast<int>(node.integer("count", ValueCheck::between(1, 100000)));
@@ -145,7 +164,7 @@ void build_bundle(const ConfigNode& node, const std::string& name, ScenarioBuild
   for (const auto& [key, factors] : spread->factors())
     set.properties.push_back({"spread." + key, "1", factors});
   system.declare_members(std::move(set));
-  build.publish(name, BundleFacts{bundle.members});
+  build.publish(name, BundleFacts{bundle.members, expect_fan_command(node, name, air, build)});
 }
 
 const char* kExample = R"(scenario: {name: bundle_example, duration: 60 s, seed: 5}

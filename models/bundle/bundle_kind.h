@@ -13,6 +13,10 @@ inline constexpr const char* kBundleCategory = "bundle";
 // order its records' columns follow.
 struct BundleFacts {
   std::vector<std::string> members;
+  // The fan: none, a prescribed speed, or speed: controller, when the port "<bundle>.fan_command"
+  // (0 to 1) waits for a controller.
+  enum class Fan { none, prescribed, commanded };
+  Fan fan = Fan::none;
 };
 
 // Registers the category "bundle" (kind "parallel"): n muscles in parallel between common end
