@@ -569,3 +569,31 @@ TEST_CASE("A commanded fan needs exactly its controller") {
   CHECK_THAT(config_error(cooled_bundle(2, 40.0), {"controller.gains.proportional=-0.5 1/K"}),
              Catch::Contains("expected a positive gain"));
 }
+
+TEST_CASE("Bundles of 20 states or more get the sparse solver with warm restarts by default") {
+  // Two states per member here (temperature, dashpot): 10 members make 20.
+  const auto with = [](int count, const std::string& solver) {
+    std::string yaml = bundle_yaml(count,
+                                   "  packing: {layout: hexagonal, pitch: 1.5 mm}\n"
+                                   "  thermal: {shielding: 0.6}\n"
+                                   "  electrical: {wiring: individual, drive: {mode: power, "
+                                   "power: 0.05 W}}\n",
+                                   5.0);
+    return scenario_from_text(replaced(yaml, "solver: {rtol: 1.0e-9}", solver));
+  };
+  const Scenario small = with(9, "solver: {rtol: 1.0e-9}");
+  const Scenario large = with(10, "solver: {rtol: 1.0e-9}");
+  const Scenario bare = with(10, "");
+  REQUIRE(large.system->state_size() == 20);
+  CHECK(small.solver.linear_solver == LinearSolverKind::dense);
+  CHECK(small.solver.restart == RestartKind::cold);
+  for (const Scenario* scenario : {&large, &bare}) {
+    CHECK(scenario->solver.linear_solver == LinearSolverKind::klu);
+    CHECK(scenario->solver.restart == RestartKind::warm);
+  }
+  // Adams needs no linear solver; an explicit choice stands.
+  CHECK(with(10, "solver: {method: adams}").solver.linear_solver == LinearSolverKind::dense);
+  CHECK(with(10, "solver: {linear_solver: dense}").solver.linear_solver == LinearSolverKind::dense);
+  // The resolved configuration names the solver the run used.
+  CHECK_THAT(large.resolved_yaml, Catch::Contains("linear_solver: klu"));
+}
