@@ -195,7 +195,8 @@ void register_bundle_kind(KindRegistry& kinds) {
   kinds.add({kBundleCategory,
              "parallel",
              "n muscles side by side (hexagonal or square packing); inner ones shielded "
-             "from convection, touching ones exchanging heat, an optional fan; wired in series "
+             "from convection, touching ones exchanging heat, an optional fan (its speed a signal, "
+             "or `controller` for a controller of type fan); wired in series "
              "or parallel to one supply (voltage, current or power) or each to its own drive",
              {{kExample, "bundle"}},
              InstanceBuilder(build_bundle)});
