@@ -7,6 +7,7 @@
 #include "controllers/muscle_drive.h"
 #include "controllers/pid_controller.h"
 #include "controllers/self_sensing_estimator.h"
+#include "models/bundle/bundle_magnetics.h"
 #include "models/muscle.h"
 #include "sim/scenario_builder.h"
 
@@ -48,12 +49,38 @@ void build_muscle_drive(const ConfigNode& node, const std::string& name, Scenari
                                        muscle.name});
 }
 
+// The estimator's own model of a bundle member's coupling to its neighbours, G n M(x) in L*:
+// its own coil geometry and G (measure_per_henry), the packing's neighbours and pitch. Members
+// sharing one section share one table.
+std::function<double(double)> mutual_model(const ConfigNode& node, const std::string& muscle,
+                                           ScenarioBuilder& build) {
+  const auto* coupling = build.facts<MemberCouplingFacts>(muscle + "/magnetic");
+  if (!coupling) {
+    node.fail("models a bundle member's coupling to its neighbours; the muscle " + muscle +
+              " has none (give the bundle a magnetic section)");
+  }
+  node.declare({"coil", "measure_per_henry"});
+  const double gain = node.quantity("measure_per_henry", "s/H", ValueCheck::positive());
+  using Model = std::shared_ptr<const NeighbourMutual>;
+  const std::string key = node.path() + " at pitch " + std::to_string(coupling->pitch);
+  const Model* shared = build.facts<Model>(key);
+  const Model model = shared ? *shared : NeighbourMutual::from_config(node, coupling->pitch);
+  if (!shared) build.publish(key, model);
+  const double neighbours = coupling->neighbours;
+  return [model, gain, neighbours](double deflection) {
+    return gain * neighbours * (*model)(deflection);
+  };
+}
+
 void build_estimator(const ConfigNode& node, const std::string& name, ScenarioBuilder& build) {
-  node.declare({"drive"});
+  node.declare({"drive", "mutual_compensation"});
   const auto& drive = build.linked(node, "drive", kDriveCategory);
   const MuscleDriveFacts& facts = sensing_drive(node, drive.name, build);
   SystemBuilder& system = build.system();
-  auto& estimator = system.add(SelfSensingEstimator::from_config(name, node, facts.period));
+  std::function<double(double)> mutual;
+  if (const auto compensation = node.find("mutual_compensation"))
+    mutual = mutual_model(*compensation, facts.muscle, build);
+  auto& estimator = system.add(SelfSensingEstimator::from_config(name, node, facts.period, mutual));
   system.connect(estimator, "inductance_measure", drive.name + ".inductance_measure");
   // The power asked of the drive over the period that ends at the sample: a controller's
   // command of the previous sample, or the drive's own demand.

@@ -60,9 +60,9 @@ SelfSensingEstimator::SelfSensingEstimator(
   SelfSensingEstimation check(defaults_, period);  // throws for an impossible model
 }
 
-std::unique_ptr<SelfSensingEstimator> SelfSensingEstimator::from_config(const std::string& group,
-                                                                        const ConfigNode& node,
-                                                                        double period) {
+std::unique_ptr<SelfSensingEstimator> SelfSensingEstimator::from_config(
+    const std::string& group, const ConfigNode& node, double period,
+    std::function<double(double)> mutual_measure) {
   using P = SelfSensingEstimatorParameters;
   node.declare({"inductance", "filters", "thermal", "mechanics", "calibration"});
   P p;
@@ -116,6 +116,7 @@ std::unique_ptr<SelfSensingEstimator> SelfSensingEstimator::from_config(const st
     bind.bind(node.parameter_path("calibration.force_offset"), "N", {},
               bind.member(&P::force_offset));
   }
+  p.mutual_measure = std::move(mutual_measure);
   return std::make_unique<SelfSensingEstimator>(group, p, period, std::move(bind));
 }
 
@@ -167,8 +168,19 @@ void SelfSensingEstimator::sample(const Evaluation& evaluation, long index) cons
 }
 
 double SelfSensingEstimation::model_deflection(double inductance_measure) const {
-  return parameters_.inductance.deflection(inductance_measure,
-                                           parameters_.inductance.reference_temperature);  // (7.4)
+  const InductanceLaw& law = parameters_.inductance;
+  double deflection = law.deflection(inductance_measure, law.reference_temperature);  // (7.4)
+  if (!parameters_.mutual_measure) return deflection;
+  constexpr int kMostIterations = 50;
+  constexpr double kAgreement = 1e-15;  // [m]
+  for (int k = 0; k < kMostIterations; ++k) {
+    const double own = inductance_measure - parameters_.mutual_measure(deflection);
+    const double next = law.deflection(own, law.reference_temperature);
+    const bool settled = std::abs(next - deflection) <= kAgreement;
+    deflection = next;
+    if (settled) break;
+  }
+  return deflection;
 }
 
 const SelfSensingEstimate& SelfSensingEstimation::process(double inductance_measure,

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -28,6 +29,9 @@ struct SelfSensingEstimatorParameters {
   SlsParameters mechanics;             // k1, k2, c and phi_0 (7.5), (7.6)
   double deflection_offset = 0.0;      // calibration (7.3.4), added to the deflection [m]
   double force_offset = 0.0;           // calibration (7.3.4), added to the force [N]
+  // The magnetic coupling the estimator knows, in L* [s] as a function of the deflection (a
+  // bundle member's n G M(x)): (7.4) is then solved for L* - coupling(x). Empty: none.
+  std::function<double(double)> mutual_measure;
 };
 
 // The held estimates after one sample. Before the first usable L* the deflection, velocity and
@@ -59,7 +63,9 @@ class SelfSensingEstimation {
   double period() const { return period_; }
   void set_deflection_offset(double offset);
   void set_force_offset(double offset);
-  // (7.4) of the estimator's own law, without filters or calibration.
+  // (7.4) of the estimator's own law, without filters or calibration; with a coupling model,
+  // the deflection x at which law(x) + coupling(x) is the measure (fixed-point iteration: the
+  // coupling changes with x a hundred times less than the law).
   double model_deflection(double inductance_measure) const;
 
   long rejected_measurements() const { return rejected_measurements_; }  // not finite or <= 0
@@ -130,8 +136,10 @@ class SelfSensingEstimator final : public SampledComponent {
   // initial_thermal_force (optional, 0 N)}, mechanics {k1, k2, damping, force_offset},
   // calibration {deflection_offset, force_offset} (optional, 0). The low-pass cut-off and the
   // calibration offsets are parameters whether given or not.
-  static std::unique_ptr<SelfSensingEstimator> from_config(const std::string& group,
-                                                           const ConfigNode& node, double period);
+  // `mutual_measure` is the coupling model, if the scenario gives one (built by the caller).
+  static std::unique_ptr<SelfSensingEstimator> from_config(
+      const std::string& group, const ConfigNode& node, double period,
+      std::function<double(double)> mutual_measure = {});
 
   std::vector<OutputDeclaration> outputs() const override;
   std::vector<InputDeclaration> inputs() const override;

@@ -95,8 +95,15 @@ std::vector<OutputDeclaration> CoilImpedance::outputs() const {
 }
 
 std::vector<InputDeclaration> CoilImpedance::inputs() const {
-  if (needs_temperature()) return {{"deflection", true}, {"temperature", true}};
-  return {{"deflection", true}};
+  const InputDeclaration mutual{"mutual_inductances", true, false, InputArity::many};
+  if (needs_temperature()) return {{"deflection", true}, {"temperature", true}, mutual};
+  return {{"deflection", true}, mutual};
+}
+
+std::string CoilImpedance::check_connections() const {
+  if (source_count(mutual_input()) > 0 && defaults_.inductance.is_measure)
+    return "adds mutual inductances in henries to an inductance given as the measure L*";
+  return {};
 }
 
 std::vector<ParameterDeclaration> CoilImpedance::parameters() const {
@@ -124,7 +131,9 @@ void CoilImpedance::compute_outputs(const Evaluation& evaluation) const {
   const auto& run = run_state<Run>(evaluation);
   const double deflection = input(evaluation, kDeflection);
   const double temperature = needs_temperature() ? input(evaluation, kTemperature) : 0.0;
-  set_output(evaluation, kInductance, run.inductance(deflection, temperature));
+  double inductance = run.inductance(deflection, temperature);
+  if (source_count(mutual_input()) > 0) inductance += input_sum(evaluation, mutual_input());
+  set_output(evaluation, kInductance, inductance);
   set_output(evaluation, kResistance, run.resistance(deflection, temperature));
 }
 

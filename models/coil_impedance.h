@@ -27,7 +27,8 @@ struct CoilImpedanceParameters {
 // The heater coil's impedance as seen by a drive or an LCR meter: inductance (or the Muscle
 // Drive's measure L*) by (6.3)/(7.3) and resistance by (6.5)/(6.4), from the muscle's
 // deflection and temperature. The drive heats with this resistance, so R(T) of an iron wire
-// feeds back into the Joule heating.
+// feeds back into the Joule heating. The fan-in input "mutual_inductances" adds the mutual
+// inductance of coupled coils to the inductance (henries only): a bundle's neighbours.
 class CoilImpedance final : public Component {
  public:
   enum Input { kDeflection, kTemperature };
@@ -46,6 +47,9 @@ class CoilImpedance final : public Component {
   std::string check_parameters(const RunSetup& setup) const override;
   void compute_outputs(const Evaluation& evaluation) const override;
 
+  std::string check_connections() const override;
+  // The index of the input "mutual_inductances" (after deflection and, if any, temperature).
+  int mutual_input() const { return needs_temperature() ? 2 : 1; }
   // Whether the impedance depends on temperature (as built).
   bool needs_temperature() const { return temperature_dependent_; }
   const CoilImpedanceParameters& defaults() const { return defaults_; }

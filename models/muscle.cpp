@@ -105,6 +105,7 @@ void build_muscle(const ConfigNode& muscle, const std::string& name, ScenarioBui
   const ConfigNode inductance = muscle.at("inductance");
   auto& coil = system.add(CoilImpedance::from_config(name, inductance, resistance));
   system.connect(coil, "deflection", name + ".deflection");
+  system.export_input(name + ".mutual_inductances", coil, "mutual_inductances");
   if (coil.needs_temperature()) {
     if (!thermal.reports_temperature) {
       (coil.defaults().resistance_law().rho_T != 0.0 ? resistance : inductance)

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "models/bundle/bundle_air.h"
+#include "models/bundle/bundle_magnetics.h"
 #include "models/bundle/bundle_supply.h"
 #include "models/bundle/parameter_spread.h"
 #include "models/laws/packing.h"
@@ -15,9 +16,10 @@ namespace tcpmsim {
 
 namespace {
 
-// The drive category is registered by the controllers; a bundle builds its members' drives by
-// that name, through the registry.
+// The drive and estimator categories are registered by the controllers; a bundle builds its
+// members' drives and estimators by those names, through the registry.
 constexpr const char* kDriveCategory = "drive";
+constexpr const char* kEstimatorCategory = "estimator";
 
 // "m0" ... "m9", "m00" ... "m18": as many digits as the largest index needs.
 std::vector<std::string> member_ids(int count) {
@@ -43,6 +45,7 @@ struct Bundle {
   std::string name;
   std::vector<std::string> members;  // instance names "b/m00"
   BundleCrossSection section;
+  double pitch = 0.0;  // [m] between touching centres
 };
 
 // Member k's packed convection and its exchange with its neighbours and the fan.
@@ -75,24 +78,38 @@ void couple_heat(const Bundle& bundle, std::size_t k, const BundleAir& air,
           (spread.has("thermal.conductance") ? " and the member's spread factor" : ""));
 }
 
+// Each member's own drive and, if the section has one, its own estimator reading that drive.
+void drive_members(const ConfigNode& node, const Bundle& bundle, ScenarioBuilder& build) {
+  const ConfigNode drive = node.at("drive");
+  if (drive.has("muscle"))
+    drive.at("muscle").fail("each member's drive heats its own muscle; remove 'muscle'");
+  const Kind& kind = build.kinds().select(kDriveCategory, drive);
+  const auto estimator = node.find("estimator");
+  if (estimator && estimator->has("drive"))
+    estimator->at("drive").fail("each member's estimator reads its own drive; remove 'drive'");
+  for (const auto& member : bundle.members) {
+    build.build_member(kDriveCategory, member + "/drive", drive, kind, {{kMuscleCategory, member}});
+    if (estimator) {
+      build.build_member(kEstimatorCategory, member + "/estimator", *estimator,
+                         build.kinds().select(kEstimatorCategory, *estimator),
+                         {{kDriveCategory, member + "/drive"}});
+    }
+  }
+}
+
 void wire_members(const ConfigNode& node, const Bundle& bundle, ScenarioBuilder& build) {
-  node.declare({"wiring", "drive"});
+  node.declare({"wiring", "drive", "estimator"});
   const std::string wiring = node.choice("wiring", {"individual", "series", "parallel"});
   SystemBuilder& system = build.system();
   if (wiring == "individual") {
-    const ConfigNode drive = node.at("drive");
-    if (drive.has("muscle"))
-      drive.at("muscle").fail("each member's drive heats its own muscle; remove 'muscle'");
-    const Kind& kind = build.kinds().select(kDriveCategory, drive);
-    for (const auto& member : bundle.members) {
-      build.build_member(kDriveCategory, member + "/drive", drive, kind,
-                         {{kMuscleCategory, member}});
-    }
+    drive_members(node, bundle, build);
     return;
   }
-  if (node.has("drive"))
-    node.at("drive").fail("one supply feeds a " + wiring +
-                          " bundle; 'drive' is for wiring: individual");
+  for (const char* key : {"drive", "estimator"}) {
+    if (node.has(key))
+      node.at(key).fail("one supply feeds a " + wiring + " bundle; '" + std::string(key) +
+                        "' is for wiring: individual");
+  }
   const BundleWiring circuit = wiring == "series" ? BundleWiring::series : BundleWiring::parallel;
   const std::string supply = bundle.name + "/supply";
   auto& source = system.add(BundleSupply::from_config(supply, node, circuit, build.signals()));
@@ -103,6 +120,26 @@ void wire_members(const ConfigNode& node, const Bundle& bundle, ScenarioBuilder&
     system.connect(wire, "bundle_voltage", supply + ".voltage");
     system.connect(wire, "bundle_current", supply + ".current");
     system.connect(member + ".power", member + "/wire.power");
+  }
+}
+
+// Each member's coil couples to its touching neighbours' (magnetic: {coil: {...}}).
+void couple_coils(const ConfigNode& magnetic, const Bundle& bundle, ScenarioBuilder& build) {
+  if (build.facts<MuscleFacts>(bundle.members.front())->inductance_is_measure)
+    magnetic.fail(
+        "mutual inductances are in henries: give the muscles' inductance in henries, "
+        "not as the measure L*");
+  const auto mutual = NeighbourMutual::from_config(magnetic, bundle.pitch);
+  SystemBuilder& system = build.system();
+  for (std::size_t k = 0; k < bundle.members.size(); ++k) {
+    const std::string& member = bundle.members[k];
+    auto& term = system.add(std::make_unique<MemberMutual>(
+        member + "/magnetic", mutual, static_cast<int>(bundle.section.neighbours[k].size())));
+    system.connect(term, "deflection", member + ".deflection");
+    system.connect(member + ".mutual_inductances", member + "/magnetic.mutual_inductance");
+    build.publish(
+        member + "/magnetic",
+        MemberCouplingFacts{static_cast<int>(bundle.section.neighbours[k].size()), bundle.pitch});
   }
 }
 
@@ -126,9 +163,12 @@ BundleFacts::Fan expect_fan_command(const ConfigNode& node, const std::string& n
 }
 
 void build_bundle(const ConfigNode& node, const std::string& name, ScenarioBuilder& build) {
-  node.declare({"count", "packing", "muscle", "spread", "thermal", "electrical"});
+  node.declare({"count", "packing", "muscle", "spread", "thermal", "electrical", "magnetic"});
   const int count = static_cast<int>(node.integer("count", ValueCheck::between(1, 100000)));
-  Bundle bundle{name, {}, read_cross_section(node.at("packing"), count)};
+  Bundle bundle{name,
+                {},
+                read_cross_section(node.at("packing"), count),
+                node.at("packing").quantity("pitch", "m", ValueCheck::positive())};
   const auto ids = member_ids(count);
   for (const auto& id : ids) bundle.members.push_back(name + "/" + id);
 
@@ -152,6 +192,7 @@ void build_bundle(const ConfigNode& node, const std::string& name, ScenarioBuild
     couple_heat(bundle, k, air, *spread, system);
     spread->apply(k, member, system, {"thermal.conductance"});
   }
+  if (const auto magnetic = node.find("magnetic")) couple_coils(*magnetic, bundle, build);
   wire_members(node.at("electrical"), bundle, build);
   MemberSet set{name, ids, {}};
   std::vector<double> x, y, neighbours;
@@ -184,6 +225,31 @@ bundle:
 load: {type: deflection, bundle: bundle, deflection: 20 mm}
 )";
 
+// Coupled coils, each muscle on its own Muscle Drive with its own estimator.
+const char* kMagneticExample = R"(scenario: {name: bundle_example, duration: 2 s, seed: 5}
+output: {rate: 20 Hz}
+bundle:
+  count: 3
+  packing: {layout: hexagonal, pitch: 1.6 mm}
+  muscle:
+    thermal: {heat_capacity: 0.05 J/K, conductance: 2.5 mW/K, ambient_temperature: 23 degC}
+    thermal_force: {form: physical, force_per_kelvin: 4 mN/K, reference_temperature: 23 degC}
+    mechanics: {k1: 10.8e-3 N/mm, k2: 2.7e-3 N/mm, damping: 4.3e-3 N*s/mm, force_offset: 0.1 N}
+    resistance: 10.18 ohm
+    inductance: {lambda_l: 7.45 uH*mm, lambda_x: 28.8 mm, lambda_0: 1.148 uH}
+  thermal: {shielding: 0.6}
+  magnetic: {coil: {radius: 0.7 mm, turns: 62, length: 28.8 mm, wire_diameter: 0.1 mm}}
+  electrical:
+    wiring: individual
+    drive: {model: muscle_drive, supply_voltage: 7 V, series_resistance: 0.57 ohm, measurement: {threshold_current: 14 mA}, power: 0.5 W}
+    estimator:
+      inductance: {lambda_l: 2.81 us*mm, lambda_x: 28.8 mm, lambda_0: 0.433 us}
+      thermal: {kappa_P: 7.2e-3 N/J, kappa_c: 131.6e-3 1/s}
+      mechanics: {k1: 10.8e-3 N/mm, k2: 2.7e-3 N/mm, damping: 4.3e-3 N*s/mm, force_offset: 106.9e-3 N}
+      mutual_compensation: {coil: {radius: 0.7 mm, turns: 62, length: 28.8 mm, wire_diameter: 0.1 mm}, measure_per_henry: 0.3772 s/H}
+load: {type: deflection, bundle: bundle, deflection: 20 mm}
+)";
+
 }  // namespace
 
 void register_bundle_kind(KindRegistry& kinds) {
@@ -196,9 +262,10 @@ void register_bundle_kind(KindRegistry& kinds) {
              "parallel",
              "n muscles side by side (hexagonal or square packing); inner ones shielded "
              "from convection, touching ones exchanging heat, an optional fan (its speed a signal, "
-             "or `controller` for a controller of type fan); wired in series "
+             "or `controller` for a controller of type fan), coils coupled magnetically to their "
+             "neighbours; wired in series "
              "or parallel to one supply (voltage, current or power) or each to its own drive",
-             {{kExample, "bundle"}},
+             {{kExample, "bundle"}, {kMagneticExample, "bundle"}},
              InstanceBuilder(build_bundle)});
 }
 

@@ -1,0 +1,98 @@
+#include "models/bundle/bundle_magnetics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "models/inductance/parallel_coils.h"
+
+namespace tcpmsim {
+
+namespace {
+
+constexpr int kNodes = 17;         // Chebyshev nodes over [l0 / 2, 2 l0]
+constexpr double kShortest = 0.5;  // of the rest length
+constexpr double kLongest = 2.0;
+
+// Node k of n on [a, b] (Chebyshev points of the first kind).
+double chebyshev_node(int k, int n, double a, double b) {
+  const double t = std::cos(std::numbers::pi * (k + 0.5) / n);
+  return 0.5 * (a + b) + 0.5 * (b - a) * t;
+}
+
+// The barycentric interpolant through values at the first-kind nodes (weights (-1)^k sin).
+double barycentric(const std::vector<double>& values, double a, double b, double x) {
+  const int n = static_cast<int>(values.size());
+  double numerator = 0.0, denominator = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const double node = chebyshev_node(k, n, a, b);
+    if (x == node) return values[static_cast<std::size_t>(k)];
+    const double weight =
+        (k % 2 == 0 ? 1.0 : -1.0) * std::sin(std::numbers::pi * (k + 0.5) / n) / (x - node);
+    numerator += weight * values[static_cast<std::size_t>(k)];
+    denominator += weight;
+  }
+  return numerator / denominator;
+}
+
+}  // namespace
+
+NeighbourMutual::NeighbourMutual(inductance::CoilGeometry at_rest, double separation)
+    : at_rest_(at_rest),
+      separation_(separation),
+      shortest_(kShortest * at_rest.length),
+      longest_(kLongest * at_rest.length) {
+  for (int k = 0; k < kNodes; ++k)
+    values_.push_back(direct(chebyshev_node(k, kNodes, shortest_, longest_) - at_rest_.length));
+  // Between the nodes, where an interpolant is worst.
+  for (int k = 0; k + 1 < kNodes; ++k) {
+    const double length = 0.5 * (chebyshev_node(k, kNodes, shortest_, longest_) +
+                                 chebyshev_node(k + 1, kNodes, shortest_, longest_));
+    const double exact = direct(length - at_rest_.length);
+    table_error_ = std::max(table_error_,
+                            std::abs((*this)(length - at_rest_.length) - exact) / std::abs(exact));
+  }
+}
+
+std::shared_ptr<const NeighbourMutual> NeighbourMutual::from_config(const ConfigNode& node,
+                                                                    double separation) {
+  node.declare({"coil"});
+  const ConfigNode coil = node.at("coil");
+  coil.declare({"radius", "turns", "length", "wire_diameter"});
+  inductance::CoilGeometry geometry;
+  geometry.radius = coil.quantity("radius", "m", ValueCheck::positive());
+  geometry.turns = coil.number("turns", ValueCheck::at_least(1.0));
+  geometry.length = coil.quantity("length", "m", ValueCheck::positive());
+  geometry.wire_diameter = coil.quantity("wire_diameter", "m", ValueCheck::positive());
+  if (!(separation > 2.0 * geometry.radius + geometry.wire_diameter)) {
+    coil.at("radius").fail(
+        "neighbouring coils at the packing pitch would overlap: the pitch must "
+        "exceed the coil's outer diameter 2 r + delta");
+  }
+  return std::make_shared<NeighbourMutual>(geometry, separation);
+}
+
+double NeighbourMutual::direct(double deflection) const {
+  inductance::CoilGeometry coil = at_rest_;
+  coil.length = at_rest_.length + deflection;
+  return inductance::parallel_coils_mutual_inductance(coil, separation_);
+}
+
+double NeighbourMutual::operator()(double deflection) const {
+  const double length = at_rest_.length + deflection;
+  if (length < shortest_ || length > longest_) return direct(deflection);
+  return barycentric(values_, shortest_, longest_, length);
+}
+
+MemberMutual::MemberMutual(std::string group, std::shared_ptr<const NeighbourMutual> mutual,
+                           int neighbours)
+    : Component(std::move(group), "member_mutual"),
+      mutual_(std::move(mutual)),
+      neighbours_(neighbours) {}
+
+void MemberMutual::compute_outputs(const Evaluation& evaluation) const {
+  set_output(evaluation, 0, neighbours_ * (*mutual_)(input(evaluation, 0)));
+}
+
+}  // namespace tcpmsim
