@@ -7,6 +7,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "analysis/task_runs.h"
 #include "controllers/pid_controller.h"
 #include "controllers/self_sensing_estimator.h"
 #include "kinds/standard_kinds.h"
@@ -79,27 +80,6 @@ PreparedTask prepare(const std::string& config, const ControlTaskSettings& setti
   return prepared;
 }
 
-MemoryRecord simulate(const Scenario& scenario, Context& context,
-                      SolverStatistics* statistics = nullptr) {
-  MemoryRecord record(*scenario.system);
-  const auto totals = integrate(scenario, context, record);
-  if (statistics) *statistics = totals;
-  return record;
-}
-
-// mean(truth - estimate) over [from, to).
-double offset_over(const MemoryRecord& record, const std::string& truth,
-                   const std::string& estimate, double from, double to) {
-  std::vector<double> t, e;
-  for (std::size_t k = 0; k < record.time.size(); ++k) {
-    if (record.time[k] < from || record.time[k] >= to || !std::isfinite(record[estimate][k]))
-      continue;
-    t.push_back(record[truth][k]);
-    e.push_back(record[estimate][k]);
-  }
-  return calibration_offset(t, e);
-}
-
 ControlTaskResult run_task(PreparedTask& prepared, bool calibrate) {
   const auto started = std::chrono::steady_clock::now();
   ControlTaskResult result;
@@ -110,19 +90,19 @@ ControlTaskResult run_task(PreparedTask& prepared, bool calibrate) {
   Context task = prepared.task.make_context();
   if (calibrate) {
     Context hold_deflection = prepared.deflection_calibration.make_context();
-    const auto deflection = simulate(prepared.deflection_calibration, hold_deflection);
+    const auto deflection = simulate_in_memory(prepared.deflection_calibration, hold_deflection);
     result.deflection_offset =
         offset_over(deflection, "muscle/deflection", "estimator/deflection", kCalibrationSettle,
                     kCalibrationSettle + kDeflectionAverage);
     Context hold_force = prepared.force_calibration.make_context();
     add_to(hold_force, kDeflectionOffset, result.deflection_offset);
-    const auto force = simulate(prepared.force_calibration, hold_force);
+    const auto force = simulate_in_memory(prepared.force_calibration, hold_force);
     result.force_offset = offset_over(force, "muscle/force", "estimator/force", kCalibrationSettle,
                                       kCalibrationSettle + kForceAverage);
     add_to(task, kDeflectionOffset, result.deflection_offset);
     add_to(task, kForceOffset, result.force_offset);
   }
-  const auto record = simulate(prepared.task, task, &result.statistics);
+  const auto record = simulate_in_memory(prepared.task, task, &result.statistics);
 
   // The task starts at the reference's first change; before it the muscle settles.
   const Signal& reference =

@@ -506,6 +506,18 @@ std::string System::check_component_contracts(Context& context, double time,
   return {};
 }
 
+const ChannelInfo* System::source_of(const Component& consumer, std::string_view input) const {
+  for (std::size_t c = 0; c < components_.size(); ++c) {
+    if (components_[c].get() != &consumer) continue;
+    for (std::size_t i = 0; i < inputs_[c].size(); ++i) {
+      if (inputs_[c][i].name != input) continue;
+      const int signal = consumer.first_source_[i];
+      return signal < 0 ? nullptr : &channels_[static_cast<std::size_t>(signal)];
+    }
+  }
+  return nullptr;
+}
+
 SparsityPattern System::jacobian_pattern() const {
   // States each signal depends on, through chains of direct feedthrough.
   std::vector<std::vector<int>> signal_states(channels_.size());

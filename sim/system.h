@@ -93,6 +93,10 @@ class System {
   std::optional<int> parameter_index(std::string_view path) const;  // "muscle.mechanics.k2"
   std::optional<int> signal_slot(std::string_view group, std::string_view name) const;
 
+  // The output wired to `consumer`'s input `input` (its first source), or nullptr when nothing
+  // is (or the component has no such input).
+  const ChannelInfo* source_of(const Component& consumer, std::string_view input) const;
+
   // The first component of type T, or nullptr.
   template <typename T>
   const T* find() const {
