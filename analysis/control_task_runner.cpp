@@ -233,38 +233,44 @@ std::string format_control_task_report(const std::vector<ControlTaskResult>& res
   return text;
 }
 
+void write_task_analysis(Hdf5Writer& file, const std::string& group, const TaskAnalysis& analysis,
+                         const char* error_unit) {
+  auto series = [&](const std::string& name, const std::vector<double>& values, const char* units) {
+    file.write(group + "/" + name, values, units);
+  };
+  series("estimation_error", analysis.estimation_errors, error_unit);
+  std::vector<double> step_times, rise_times, reached, frequencies, magnitude_db, phase;
+  for (const auto& rise : analysis.rises) {
+    step_times.push_back(rise.step_time), rise_times.push_back(rise.rise_time),
+        reached.push_back(rise.reached);
+  }
+  for (const auto& point : analysis.response) {
+    frequencies.push_back(point.frequency), magnitude_db.push_back(point.magnitude_db),
+        phase.push_back(point.phase);
+  }
+  if (!analysis.rises.empty()) {
+    series("step_time", step_times, "s");
+    series("rise_time", rise_times, "s");
+    series("reached", reached, "1");
+  }
+  if (!analysis.response.empty()) {
+    series("frequency", frequencies, "Hz");
+    series("magnitude", magnitude_db, "dB");
+    series("phase", phase, "rad");
+    series("bandwidth", {analysis.bandwidth.value_or(std::nan(""))}, "Hz");
+  }
+}
+
 void write_control_task_report(const std::vector<ControlTaskResult>& results,
-                               const std::string& path) {
+                               const std::string& path,
+                               const std::function<void(Hdf5Writer&)>& more) {
   Hdf5Writer file(path);
   for (const auto& result : results) {
-    auto series = [&](const std::string& name, const std::vector<double>& values,
-                      const char* units) {
-      file.write(result.scenario + "/" + name, values, units);
-    };
-    const char* unit = result.controls_deflection ? "m" : "N";
-    series("calibration_offsets", {result.deflection_offset, result.force_offset}, "m, N");
-    series("estimation_error", result.estimation_errors, unit);
-    std::vector<double> step_times, rise_times, reached, frequencies, magnitude_db, phase;
-    for (const auto& rise : result.rises) {
-      step_times.push_back(rise.step_time), rise_times.push_back(rise.rise_time),
-          reached.push_back(rise.reached);
-    }
-    for (const auto& point : result.response) {
-      frequencies.push_back(point.frequency), magnitude_db.push_back(point.magnitude_db),
-          phase.push_back(point.phase);
-    }
-    if (!result.rises.empty()) {
-      series("step_time", step_times, "s");
-      series("rise_time", rise_times, "s");
-      series("reached", reached, "1");
-    }
-    if (!result.response.empty()) {
-      series("frequency", frequencies, "Hz");
-      series("magnitude", magnitude_db, "dB");
-      series("phase", phase, "rad");
-      series("bandwidth", {result.bandwidth.value_or(std::nan(""))}, "Hz");
-    }
+    file.write(result.scenario + "/calibration_offsets",
+               std::vector<double>{result.deflection_offset, result.force_offset}, "m, N");
+    write_task_analysis(file, result.scenario, result, result.controls_deflection ? "m" : "N");
   }
+  if (more) more(file);
   file.commit();
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -8,6 +9,7 @@
 #include "analysis/control_tasks.h"
 #include "sim/config/units.h"
 #include "sim/integrator.h"
+#include "sim/io/hdf5_writer.h"
 
 namespace tcpmsim {
 
@@ -15,15 +17,19 @@ namespace tcpmsim {
 // of the estimates (the testing machine holds 20 mm for the deflection offset, averaged over
 // 10 s; then it holds 0.40 N while the Muscle Drive controls the deflection, for the force
 // offset, averaged over 30 s), then the task with both offsets applied.
-struct ControlTaskResult {
-  std::string scenario;
-  bool controls_deflection = false;
-  double deflection_offset = 0.0;                // [m], added to the estimate
-  double force_offset = 0.0;                     // [N]
+// What the control-task analysis finds in one task (single muscle or pair).
+struct TaskAnalysis {
   std::vector<StepRise> rises;                   // step tasks
   std::vector<FrequencyResponsePoint> response;  // sweep tasks
   std::optional<double> bandwidth;               // [Hz]
   std::vector<double> estimation_errors;         // of the controlled quantity, over the task
+};
+
+struct ControlTaskResult : TaskAnalysis {
+  std::string scenario;
+  bool controls_deflection = false;
+  double deflection_offset = 0.0;  // [m], added to the estimate
+  double force_offset = 0.0;       // [N]
   SolverStatistics statistics;
   double wall_seconds = 0.0;
 };
@@ -41,7 +47,14 @@ std::vector<ControlTaskResult> run_control_tasks(const std::vector<std::string>&
 // The thesis' results (7.4) beside ours: rise-time ranges, -3 dB bandwidths and estimation
 // errors (mean and 95 % band) for deflection and force control, plus the Bode points.
 std::string format_control_task_report(const std::vector<ControlTaskResult>& results);
+// Writes one group per task (its calibration offsets and write_task_analysis); `more` may add
+// groups (the pair tasks) before the file is committed.
 void write_control_task_report(const std::vector<ControlTaskResult>& results,
-                               const std::string& path);
+                               const std::string& path,
+                               const std::function<void(Hdf5Writer&)>& more = {});
+// A task's analysis under `group`: step_time, rise_time, reached; or frequency, magnitude,
+// phase, bandwidth; and estimation_error (in error_unit).
+void write_task_analysis(Hdf5Writer& file, const std::string& group, const TaskAnalysis& analysis,
+                         const char* error_unit);
 
 }  // namespace tcpmsim

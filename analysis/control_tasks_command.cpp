@@ -15,12 +15,14 @@ std::string run_control_tasks_command(const ControlTasksOptions& options, std::o
   for (const auto& config : options.configs)
     (is_pair_task(config, options.settings.overrides, units) ? pair_configs : single_configs)
         .push_back(config);
-  const auto results = run_control_tasks(single_configs, options.settings, units);
+  // The pair tasks first: they check themselves before anything runs.
   const auto pair_results = run_pair_tasks(pair_configs, options.settings, units);
+  const auto results = run_control_tasks(single_configs, options.settings, units);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   const std::string output = options.output.empty() ? "results/control_tasks.h5" : options.output;
-  write_control_task_report(results, output);
+  write_control_task_report(results, output,
+                            [&](Hdf5Writer& file) { write_pair_tasks(file, pair_results); });
   if (!options.quiet) {
     out << format_control_task_report(results);
     if (!pair_results.empty()) out << format_pair_comparison(pair_results, results);

@@ -10,6 +10,8 @@
 #include "kinds/standard_kinds.h"
 #include "models/antagonistic_joint.h"
 #include "signals/control_task_signals.h"
+#include "signals/piecewise_constant_signal.h"
+#include "sim/config/config_error.h"
 #include "sim/memory_record.h"
 #include "sim/parallel_runs.h"
 #include "sim/run.h"
@@ -25,20 +27,22 @@ constexpr double kCalibrationSettle = 30.0;  // [s] before averaging
 constexpr double kDeflectionAverage = 10.0;  // [s]
 constexpr const char* kHoldMiddle = "controller.reference=0 rad";
 
-// The names a pair task's analysis reads: the joint's, and each side's estimator.
+// The names a pair task's analysis reads: the joint's, and each side's estimator (none when
+// the controller reads the joint's encoder).
 struct PairNames {
   std::string joint, controller, left_estimator, right_estimator;
+  bool self_sensing() const { return !left_estimator.empty(); }
 };
 
 PairNames names_of(const Scenario& scenario) {
   const System& system = *scenario.system;
   const auto* controller = system.find<JointAngleController>();
   const auto* joint = system.find<AntagonisticJoint>();
-  if (!controller || !joint) throw std::invalid_argument("the scenario has no joint-angle task");
+  if (!controller || !joint)
+    throw std::invalid_argument(scenario.settings.name + ": no joint-angle task");
   const auto* left = system.source_of(*controller, "left_deflection");
   const auto* right = system.source_of(*controller, "right_deflection");
-  if (!left || !right)
-    throw std::invalid_argument("the joint-angle controller does not read self-sensing");
+  if (!left || !right) return {joint->group(), controller->group(), "", ""};
   return {joint->group(), controller->group(), left->group, right->group};
 }
 
@@ -46,17 +50,33 @@ std::string offset_path(const std::string& estimator) {
   return estimator + ".calibration.deflection_offset";
 }
 
-// The three runs of one task, loaded up front: udunits2's parser is not thread-safe.
+// The two runs of one task, loaded up front: udunits2's parser is not thread-safe.
 struct PreparedPairTask {
   Scenario calibration, task;
   PairNames names;
 };
 
+// A task is steps (rise times) or the stepped sine sweep (frequency response): a reference that
+// is neither (a plain sine, a constant) has nothing to analyse.
+void check_reference(const std::string& config, const Scenario& scenario, const PairNames& names) {
+  const Context context = scenario.make_context();
+  const Signal& reference =
+      context.signal(*scenario.system->signal_slot(names.controller, "reference"));
+  const bool steps = dynamic_cast<const PiecewiseConstantSignal*>(&reference) &&
+                     std::isfinite(reference.next_breakpoint_after(0.0));
+  if (!steps && !dynamic_cast<const SteppedSineSignal*>(&reference)) {
+    throw ConfigError(SourceLocation{config, 0, 0, ""}, names.controller + ".reference",
+                      "a control task's reference is a step sequence (or steps) or a "
+                      "stepped_sine_sweep; this one is neither");
+  }
+}
+
 PreparedPairTask prepare(const std::string& config, const ControlTaskSettings& settings,
                          const std::shared_ptr<const UnitSystem>& units) {
   PreparedPairTask prepared{{}, load_scenario(config, settings.overrides, units), {}};
   prepared.names = names_of(prepared.task);
-  if (settings.calibrate) {
+  check_reference(config, prepared.task, prepared.names);
+  if (settings.calibrate && prepared.names.self_sensing()) {
     std::vector<std::string> hold = settings.overrides;
     hold.insert(hold.end(),
                 {kHoldMiddle, "scenario.duration=" +
@@ -87,7 +107,7 @@ PairTaskResult run_task(PreparedPairTask& prepared, bool calibrated) {
   result.scenario = prepared.task.settings.name;
   const PairNames& n = prepared.names;
   Context task = prepared.task.make_context();
-  if (calibrated) calibrate(prepared, result, task);
+  if (calibrated && n.self_sensing()) calibrate(prepared, result, task);
   const auto record = simulate_in_memory(prepared.task, task, &result.statistics);
   // The task starts at the reference's first change; before it the joint settles.
   const Signal& reference =
@@ -100,7 +120,8 @@ PairTaskResult run_task(PreparedPairTask& prepared, bool calibrated) {
     time.push_back(record.time[k]);
     r.push_back(record[n.controller + "/reference"][k]);
     y.push_back(record[n.joint + "/angle"][k]);
-    if (record.time[k] >= start - 1e-9)
+    // Under self-sensing the controller's angle is the estimate; under the encoder, a reading.
+    if (n.self_sensing() && record.time[k] >= start - 1e-9)
       result.estimation_errors.push_back(record[n.controller + "/angle"][k] - y.back());
   }
   if (const auto* sweep = dynamic_cast<const SteppedSineSignal*>(&reference)) {
@@ -171,6 +192,14 @@ std::vector<PairTaskResult> run_pair_tasks(const std::vector<std::string>& confi
   return results;
 }
 
+void write_pair_tasks(Hdf5Writer& file, const std::vector<PairTaskResult>& results) {
+  for (const auto& result : results) {
+    file.write(result.scenario + "/calibration_offsets",
+               std::vector<double>{result.left_offset, result.right_offset}, "m");
+    write_task_analysis(file, result.scenario, result, "rad");
+  }
+}
+
 std::string format_pair_comparison(const std::vector<PairTaskResult>& pair,
                                    const std::vector<ControlTaskResult>& single) {
   std::vector<StepRise> pair_rises, single_rises;
@@ -204,19 +233,20 @@ std::string format_pair_comparison(const std::vector<PairTaskResult>& pair,
   row("-3 dB bandwidth", bandwidth_text(pair_bandwidth, pair_swept),
       bandwidth_text(single_bandwidth, single_swept));
   for (const auto& result : pair) {
-    std::snprintf(line, sizeof line, "  %s: calibration offsets %+.3f mm (left), %+.3f mm (right)",
-                  result.scenario.c_str(), 1e3 * result.left_offset, 1e3 * result.right_offset);
-    text += line;
-    if (!result.estimation_errors.empty()) {
-      std::vector<double> errors;
-      for (double e : result.estimation_errors)
-        if (std::isfinite(e)) errors.push_back(e);
-      const ErrorStatistics statistics = error_statistics(errors);
-      std::snprintf(line, sizeof line, "; angle error %+.4f +- %.4f rad (mean, 95 %% band)",
-                    statistics.mean, statistics.half_width_95);
-      text += line;
+    if (result.estimation_errors.empty()) {
+      text += "  " + result.scenario + ": encoder feedback, nothing to calibrate\n";
+      continue;
     }
-    text += "\n";
+    std::vector<double> errors;
+    for (double e : result.estimation_errors)
+      if (std::isfinite(e)) errors.push_back(e);
+    const ErrorStatistics statistics = error_statistics(errors);
+    std::snprintf(line, sizeof line,
+                  "  %s: calibration offsets %+.3f mm (left), %+.3f mm (right); angle error "
+                  "%+.4f +- %.4f rad (mean, 95 %% band)\n",
+                  result.scenario.c_str(), 1e3 * result.left_offset, 1e3 * result.right_offset,
+                  statistics.mean, statistics.half_width_95);
+    text += line;
   }
   return text;
 }

@@ -16,14 +16,11 @@ namespace tcpmsim {
 // 30 s), then the task
 // runs with both offsets applied and is analysed by the same functions (step_rise_times,
 // sweep_frequency_response, bandwidth_3db) on the true angle against the reference.
-struct PairTaskResult {
+// estimation_errors: estimated - true angle over the task [rad] (none under encoder feedback).
+struct PairTaskResult : TaskAnalysis {
   std::string scenario;
-  double left_offset = 0.0;                      // [m], added to the left estimator's deflection
-  double right_offset = 0.0;                     // [m]
-  std::vector<StepRise> rises;                   // step tasks
-  std::vector<FrequencyResponsePoint> response;  // sweep tasks
-  std::optional<double> bandwidth;               // [Hz]
-  std::vector<double> estimation_errors;         // estimated - true angle over the task [rad]
+  double left_offset = 0.0;   // [m], added to the left estimator's deflection
+  double right_offset = 0.0;  // [m]
   SolverStatistics statistics;
 };
 
@@ -31,9 +28,15 @@ struct PairTaskResult {
 bool is_pair_task(const std::string& config, const std::vector<std::string>& overrides,
                   std::shared_ptr<const UnitSystem> units);
 
+// Loads the pair tasks and checks them (a joint-angle controller; with self-sensing, an
+// estimator on each side) before anything runs: std::invalid_argument naming the problem.
 std::vector<PairTaskResult> run_pair_tasks(const std::vector<std::string>& configs,
                                            const ControlTaskSettings& settings,
                                            std::shared_ptr<const UnitSystem> units);
+
+// Each pair task under its scenario's name: calibration_offsets [left, right] (m) and its
+// analysis (write_task_analysis, errors in rad).
+void write_pair_tasks(Hdf5Writer& file, const std::vector<PairTaskResult>& results);
 
 // The pair beside the single muscle: rise times of the steps that heat and of those that
 // cool (for the pair, towards either side, each heated by one muscle), and the bandwidths.

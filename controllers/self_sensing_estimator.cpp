@@ -173,14 +173,15 @@ double SelfSensingEstimation::model_deflection(double inductance_measure) const 
   if (!parameters_.mutual_measure) return deflection;
   constexpr int kMostIterations = 50;
   constexpr double kAgreement = 1e-15;  // [m]
+  constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
   for (int k = 0; k < kMostIterations; ++k) {
     const double own = inductance_measure - parameters_.mutual_measure(deflection);
+    if (!(own > law.lambda_0)) return kUnknown;  // outside (7.4)'s domain once uncoupled
     const double next = law.deflection(own, law.reference_temperature);
-    const bool settled = std::abs(next - deflection) <= kAgreement;
+    if (std::abs(next - deflection) <= kAgreement) return next;
     deflection = next;
-    if (settled) break;
   }
-  return deflection;
+  return kUnknown;  // no fixed point: a coupling as steep as the law itself
 }
 
 const SelfSensingEstimate& SelfSensingEstimation::process(double inductance_measure,
@@ -201,8 +202,11 @@ const SelfSensingEstimate& SelfSensingEstimation::process(double inductance_meas
   bool fresh = false;
   if (std::isfinite(inductance_measure) && inductance_measure > 0.0) {
     const double filtered = median_.push(moving_average_.push(inductance_measure));
-    if (filtered > parameters_.inductance.lambda_0) {
-      model_raw_deflection_ = model_deflection(filtered);
+    const double deflection = filtered > parameters_.inductance.lambda_0
+                                  ? model_deflection(filtered)
+                                  : std::numeric_limits<double>::quiet_NaN();
+    if (std::isfinite(deflection)) {
+      model_raw_deflection_ = deflection;
       fresh = true;
     } else {
       ++out_of_domain_samples_;

@@ -65,7 +65,8 @@ class SelfSensingEstimation {
   void set_force_offset(double offset);
   // (7.4) of the estimator's own law, without filters or calibration; with a coupling model,
   // the deflection x at which law(x) + coupling(x) is the measure (fixed-point iteration: the
-  // coupling changes with x a hundred times less than the law).
+  // coupling changes with x a hundred times less than the law); NaN where the uncoupled measure
+  // leaves (7.4)'s domain or no fixed point is found (counted as out of domain).
   double model_deflection(double inductance_measure) const;
 
   long rejected_measurements() const { return rejected_measurements_; }  // not finite or <= 0

@@ -195,10 +195,11 @@ class PatternSlots {
 
 // The Jacobian by finite differences over groups of structurally orthogonal columns
 // (Curtis-Powell-Reid), into any matrix kind. With warm restarts it keeps the values, and the
-// first call of a segment (CVODE asks at every restart) gets the last Jacobian back: a stale
-// Jacobian only slows the modified Newton iteration, and if that fails CVODE asks again with
-// CV_FAIL_OTHER and gets a fresh one. A Jacobian is carried for at most CVODE's own reuse
-// limit of steps (msbj), counted across restarts, as if no restart had happened.
+// first call of a segment (CVODE asks at every restart) gets the last Jacobian back. CVODE then
+// takes it for current: if the Newton iteration fails with it, the step is cut (by 4) and
+// retried, and that retry (CV_FAIL_OTHER) gets a fresh Jacobian. One is carried into a new
+// segment only while fewer than CVODE's reuse limit of steps (msbj = 51) have passed since it
+// was computed; inside the segment CVODE counts afresh, so it may serve up to 51 more.
 constexpr long kJacobianReuseSteps = 51;
 
 enum class CarryDirection { into_matrix, from_matrix };
@@ -273,6 +274,15 @@ int grouped_jacobian(realtype t, N_Vector y, N_Vector fy, SUNMatrix jacobian, vo
 int initialize_keeping_klu_analysis(SUNLinearSolver solver) {
   if (SUNLinSol_KLUGetSymbolic(solver) != nullptr) return SUNLS_SUCCESS;
   return SUNLinSolInitialize_KLU(solver);
+}
+
+// A refactorisation that fails (a zero pivot in the kept order) gets a fresh analysis and
+// factorisation with new pivots before CVODE hears of it, instead of failing at every retry.
+int setup_repivoting_on_failure(SUNLinearSolver solver, SUNMatrix matrix) {
+  const int flag = SUNLinSolSetup_KLU(solver, matrix);
+  if (flag == SUNLS_SUCCESS) return flag;
+  SUNLinSolInitialize_KLU(solver);
+  return SUNLinSolSetup_KLU(solver, matrix);
 }
 
 void capture_error(int, const char* module, const char* function, char* message, void* user_data) {
@@ -366,6 +376,7 @@ void Integrator::attach_linear_solver() {
         // packed bundle's thermal network it fills a fifth less than KLU's default COLAMD.
         check(SUNLinSol_KLUSetOrdering(cv.linear_solver, 0), "SUNLinSol_KLUSetOrdering");
         cv.linear_solver->ops->initialize = initialize_keeping_klu_analysis;
+        cv.linear_solver->ops->setup = setup_repivoting_on_failure;
       }
       break;
   }

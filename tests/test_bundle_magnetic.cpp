@@ -95,15 +95,19 @@ TEST_CASE("Each coil's inductance gains its neighbours' mutual inductance, the l
   }
 }
 
-TEST_CASE("The bundle's table of M(x) follows the library's sum over its whole range") {
+TEST_CASE("The bundle's table of M(x) follows the library's sum and holds at its ends") {
   const NeighbourMutual table({0.7e-3, kLambdaX, 62, 0.1e-3}, kPitch);
   CHECK(table.table_error() < 1e-6);
-  // Inside the table (lengths l0 / 2 to 2 l0) and outside it (evaluated directly).
-  for (double x : {-14e-3, -5e-3, 0.0, 7e-3, 20e-3, 28e-3, 40e-3}) {
+  // Across the table, coil lengths l0 / 4 to 4 l0.
+  for (double x : {-20e-3, -14e-3, -5e-3, 0.0, 7e-3, 20e-3, 40e-3, 80e-3}) {
     INFO("x = " << x);
     CHECK(table(x) == Approx(table.direct(x)).epsilon(1e-6));
   }
   CHECK(table(20e-3) == Approx(neighbour_mutual()).epsilon(1e-6));
+  // Beyond it the value at the end: the right-hand side never evaluates the full sum.
+  const double longest = 4.0 * kLambdaX - kLambdaX;
+  CHECK(table(longest + 50e-3) == Approx(table(longest)).epsilon(1e-12));
+  CHECK(table(-kLambdaX) == Approx(table(0.25 * kLambdaX - kLambdaX)).epsilon(1e-12));
 }
 
 TEST_CASE("Coupling biases self-sensed deflection; the estimator's own model of it removes that") {

@@ -47,6 +47,9 @@ TEST_CASE("Rings that meet and coils that overlap are refused") {
   CHECK_NOTHROW(parallel_loops_mutual_inductance(1e-3, 0.4e-3, 0.5e-3, 0.0));  // one inside
   const CoilGeometry coil{0.7e-3, 20e-3, 20.0, 0.2e-3};
   CHECK_THROWS_AS(parallel_coils_mutual_inductance(coil, 1.4e-3), std::domain_error);
+  // All but touching (a gap of 1e-6 r): the rule cannot converge and says so.
+  CHECK_THROWS_WITH(parallel_loops_mutual_inductance(0.7e-3, 0.7e-3, 1.4000007e-3, 0.0),
+                    Catch::Contains("no convergence"));
 }
 
 TEST_CASE("Two coils side by side sum every pair of rings, one of each") {

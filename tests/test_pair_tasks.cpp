@@ -2,6 +2,8 @@
 // (issue 10): calibrated like section 7.3.4, analysed by the control-task functions.
 #include <catch2/catch.hpp>
 
+#include <H5Cpp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -93,5 +95,23 @@ TEST_CASE("control-tasks reports a pair beside the single muscle") {
   CHECK_THAT(out.str(),
              Catch::Contains("Antagonistic pair (joint angle) beside the single muscle"));
   CHECK_THAT(out.str(), Catch::Contains("pair_angle_steps: calibration offsets"));
+  // The pair's analysis is in the report file beside the single muscle's.
+  H5::H5File file(options.output, H5F_ACC_RDONLY);
+  CHECK(file.nameExists("pair_angle_steps/calibration_offsets"));
+  CHECK(file.nameExists("pair_angle_steps/rise_time"));
+  CHECK(file.nameExists("ch7_deflection_steps/rise_time"));
+  file.close();
   std::filesystem::remove(options.output);
+}
+
+TEST_CASE("A pair config without steps or a sweep is no control task, and says so first") {
+  ControlTasksOptions options;
+  options.configs = {source_path("configs/ch7_control/deflection_steps.yaml"),
+                     source_path("configs/pair/pretension_change.yaml")};
+  options.output = (std::filesystem::temp_directory_path() / "tcpmsim_not_a_task.h5").string();
+  std::ostringstream out;
+  CHECK_THROWS_WITH(run_control_tasks_command(options, out, shared_units()),
+                    Catch::Contains("controller.reference: a control task's reference is a step "
+                                    "sequence"));
+  CHECK(!std::filesystem::exists(options.output));
 }

@@ -11,9 +11,10 @@ namespace tcpmsim {
 
 namespace {
 
-constexpr int kNodes = 17;         // Chebyshev nodes over [l0 / 2, 2 l0]
-constexpr double kShortest = 0.5;  // of the rest length
-constexpr double kLongest = 2.0;
+constexpr int kNodes = 25;          // Chebyshev nodes over [l0 / 4, 4 l0]
+constexpr double kShortest = 0.25;  // of the rest length
+constexpr double kLongest = 4.0;
+constexpr double kTableTolerance = 1e-6;  // relative, between the nodes
 
 // Node k of n on [a, b] (Chebyshev points of the first kind).
 double chebyshev_node(int k, int n, double a, double b) {
@@ -38,21 +39,26 @@ double barycentric(const std::vector<double>& values, double a, double b, double
 
 }  // namespace
 
+// The table runs in u = ln(l): M changes fastest at short lengths, where the rings crowd.
 NeighbourMutual::NeighbourMutual(inductance::CoilGeometry at_rest, double separation)
     : at_rest_(at_rest),
       separation_(separation),
-      shortest_(kShortest * at_rest.length),
-      longest_(kLongest * at_rest.length) {
+      shortest_(std::log(kShortest * at_rest.length)),
+      longest_(std::log(kLongest * at_rest.length)) {
+  const auto deflection_at = [&](double u) { return std::exp(u) - at_rest_.length; };
   for (int k = 0; k < kNodes; ++k)
-    values_.push_back(direct(chebyshev_node(k, kNodes, shortest_, longest_) - at_rest_.length));
+    values_.push_back(direct(deflection_at(chebyshev_node(k, kNodes, shortest_, longest_))));
   // Between the nodes, where an interpolant is worst.
   for (int k = 0; k + 1 < kNodes; ++k) {
-    const double length = 0.5 * (chebyshev_node(k, kNodes, shortest_, longest_) +
-                                 chebyshev_node(k + 1, kNodes, shortest_, longest_));
-    const double exact = direct(length - at_rest_.length);
-    table_error_ = std::max(table_error_,
-                            std::abs((*this)(length - at_rest_.length) - exact) / std::abs(exact));
+    const double u = 0.5 * (chebyshev_node(k, kNodes, shortest_, longest_) +
+                            chebyshev_node(k + 1, kNodes, shortest_, longest_));
+    const double exact = direct(deflection_at(u));
+    table_error_ =
+        std::max(table_error_, std::abs((*this)(deflection_at(u)) - exact) / std::abs(exact));
   }
+  if (!(table_error_ <= kTableTolerance))
+    throw std::domain_error("the table of M(x) is off by " + std::to_string(table_error_) +
+                            " between its nodes");
 }
 
 std::shared_ptr<const NeighbourMutual> NeighbourMutual::from_config(const ConfigNode& node,
@@ -80,9 +86,12 @@ double NeighbourMutual::direct(double deflection) const {
 }
 
 double NeighbourMutual::operator()(double deflection) const {
+  // Held at the table's ends: this runs inside the right-hand side, which must neither throw
+  // nor take milliseconds (a coil a quarter or four times its rest length is far outside any
+  // muscle's stroke).
   const double length = at_rest_.length + deflection;
-  if (length < shortest_ || length > longest_) return direct(deflection);
-  return barycentric(values_, shortest_, longest_, length);
+  const double u = length > 0.0 ? std::clamp(std::log(length), shortest_, longest_) : shortest_;
+  return barycentric(values_, shortest_, longest_, u);
 }
 
 MemberMutual::MemberMutual(std::string group, std::shared_ptr<const NeighbourMutual> mutual,

@@ -13,9 +13,9 @@ namespace tcpmsim {
 // The mutual inductance of two touching members of a bundle, coils side by side at the packing
 // pitch, as a function of their common deflection: M(l0 + x) of
 // inductance::parallel_coils_mutual_inductance (Neumann's formula over every pair of rings),
-// interpolated at Chebyshev nodes over coil lengths from l0/2 to 2 l0 (agreement with the
-// direct sum checked at construction), evaluated directly outside. Fixed at assembly: the
-// geometry is not a run parameter.
+// interpolated at Chebyshev nodes over coil lengths from l0/4 to 4 l0 (within 1e-6 of the direct
+// sum between the nodes, or std::domain_error at construction) and held at its ends outside.
+// Fixed at assembly: the geometry is not a run parameter.
 class NeighbourMutual {
  public:
   NeighbourMutual(inductance::CoilGeometry at_rest, double separation);
@@ -30,7 +30,7 @@ class NeighbourMutual {
  private:
   inductance::CoilGeometry at_rest_;
   double separation_;
-  double shortest_, longest_;   // the table's lengths
+  double shortest_, longest_;   // the table's ends, ln of the coil length
   std::vector<double> values_;  // at the Chebyshev nodes
   double table_error_ = 0.0;
 };

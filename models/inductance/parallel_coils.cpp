@@ -74,7 +74,9 @@ double parallel_loops_mutual_inductance(double a, double b, double lateral, doub
       return estimate;
     previous = estimate;
   }
-  return previous;
+  throw std::domain_error(
+      "parallel_loops_mutual_inductance: no convergence with 4096 points per angle: the rings "
+      "nearly meet");
 }
 
 double parallel_coils_mutual_inductance(const CoilGeometry& coil, double separation) {

@@ -12,9 +12,10 @@ namespace tcpmsim::inductance {
 // The integrand is smooth and periodic in both angles while the rings do not meet, so the
 // trapezoidal rule converges geometrically; the points are doubled until two estimates agree
 // to 1e-12 of the integral of |cos(t1 - t2)| / R (side by side M is a small difference of
-// large parts), or 4096 per angle. Coaxial rings (lateral 0) give Maxwell's (2.11); side
-// by side (axial 0, lateral >> a, b) two coplanar dipoles, M -> -mu0 pi a^2 b^2 / (4 lateral^3):
-// negative, a neighbour's flux returns through the ring. std::domain_error if the rings meet.
+// large parts); std::domain_error if 4096 per angle do not (rings all but touching). Coaxial rings
+// (lateral 0) give Maxwell's (2.11); side by side (axial 0, lateral >> a, b) two coplanar dipoles,
+// M -> -mu0 pi a^2 b^2 / (4 lateral^3): negative, a neighbour's flux returns through the ring.
+// std::domain_error if the rings meet.
 double parallel_loops_mutual_inductance(double a, double b, double lateral, double axial);
 
 // Two equal single-layer coils side by side, axes parallel `separation` apart and ends level,
