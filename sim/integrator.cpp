@@ -47,13 +47,25 @@ struct detail::CvodeHandles {
   std::vector<std::vector<int>> column_groups;
   std::vector<double> perturbed;
   std::vector<double> perturbed_derivatives;
+  // Dense rows read through a fan-in (a load on every member), by the chain rule.
+  struct ChainRule {
+    FanInRow row;
+    std::vector<double> sensitivity;   // d f_row / d source, at the Jacobian's state
+    std::vector<double> base_sources;  // the sources there
+    std::vector<int> direct_column;    // per column group: the row's own column in it, or -1
+    std::vector<std::vector<std::pair<int, int>>> source_columns;  // per group: (source, column)
+  };
+  std::vector<ChainRule> chain_rules;
+  std::vector<char> chain_row;  // per state: its row is a chain rule's
+  std::vector<double> base_derivatives, scratch_derivatives, increments;
   bool warm_restarts = false;
   std::vector<double> carried_jacobian;  // the pattern's entries, column by column
   bool offer_carried_jacobian = false;
-  long carried_jacobians = 0;  // handed back since the last count: CVODE counts them as new
-  long steps = 0;              // over the whole run, across restarts
-  long jacobian_step = -1;     // `steps` when the carried Jacobian was computed; -1: none yet
-  double restart_step = 0.0;   // the first step a warm restart tries (0: CVODE's estimate)
+  long carried_jacobians = 0;         // handed back since the last count: CVODE counts them as new
+  long jacobian_rhs_evaluations = 0;  // by the grouped differences, since the last count
+  long steps = 0;                     // over the whole run, across restarts
+  long jacobian_step = -1;    // `steps` when the carried Jacobian was computed; -1: none yet
+  double restart_step = 0.0;  // the first step a warm restart tries (0: CVODE's estimate)
   std::vector<int> event_flags;
   std::vector<double> configured_tolerances;
   std::vector<double> adapted_tolerances;
@@ -202,6 +214,53 @@ class PatternSlots {
 // was computed; inside the segment CVODE counts afresh, so it may serve up to 51 more.
 constexpr long kJacobianReuseSteps = 51;
 
+// The chain rules' derivatives and sources at the Jacobian's state, and their sensitivities.
+void prepare_chain_rules(detail::CvodeHandles& cv, double t, const double* state) {
+  cv.system->evaluate_derivatives(*cv.context, t, cv.signal_time(t), state,
+                                  cv.base_derivatives.data());
+  const double root_epsilon = std::sqrt(std::numeric_limits<double>::epsilon());
+  const auto& signals = cv.context->signals();
+  for (auto& rule : cv.chain_rules) {
+    for (std::size_t k = 0; k < rule.row.sources.size(); ++k) {
+      const double source = signals[static_cast<std::size_t>(rule.row.sources[k])];
+      rule.base_sources[k] = source;
+      rule.sensitivity[k] = cv.system->row_sensitivity(
+          *cv.context, t, cv.signal_time(t), state, rule.row, rule.row.sources[k],
+          root_epsilon * std::max(std::abs(source), 1.0), cv.scratch_derivatives.data());
+    }
+  }
+}
+
+// Where row `row` sits in column `column` of the pattern.
+std::size_t entry_in_column(const SparsityPattern& pattern, int column, int row) {
+  const auto& rows = pattern.rows_of_column[static_cast<std::size_t>(column)];
+  return static_cast<std::size_t>(std::lower_bound(rows.begin(), rows.end(), row) - rows.begin());
+}
+
+// Group g's contribution to a chain rule's row: through each source that one of the group's
+// columns moved, sensitivity times the source's change; the rest of the row's change is its own
+// (direct) column's.
+void add_chain_entries(detail::CvodeHandles& cv, const detail::CvodeHandles::ChainRule& rule,
+                       std::size_t g, const PatternSlots& slots) {
+  const auto& signals = cv.context->signals();
+  const auto r = static_cast<std::size_t>(rule.row.row);
+  double through_sources = 0.0;
+  for (const auto& [k, column] : rule.source_columns[g]) {
+    const auto source = static_cast<std::size_t>(k);
+    const double change =
+        rule.sensitivity[source] *
+        (signals[static_cast<std::size_t>(rule.row.sources[source])] - rule.base_sources[source]);
+    through_sources += change;
+    slots.at(column, entry_in_column(cv.pattern, column, rule.row.row)) +=
+        change / cv.increments[static_cast<std::size_t>(column)];
+  }
+  if (const int column = rule.direct_column[g]; column >= 0) {
+    const double change = cv.perturbed_derivatives[r] - cv.base_derivatives[r] - through_sources;
+    slots.at(column, entry_in_column(cv.pattern, column, rule.row.row)) +=
+        change / cv.increments[static_cast<std::size_t>(column)];
+  }
+}
+
 enum class CarryDirection { into_matrix, from_matrix };
 
 // The carried Jacobian holds the pattern's entries column by column.
@@ -240,8 +299,12 @@ int grouped_jacobian(realtype t, N_Vector y, N_Vector fy, SUNMatrix jacobian, vo
   const double* absolute = cv.adapted_tolerances.data();
   const double* relative = cv.relative_tolerances.data();
   const double root_epsilon = std::sqrt(std::numeric_limits<double>::epsilon());
+  if (!cv.chain_rules.empty()) prepare_chain_rules(cv, t, state);
+  cv.jacobian_rhs_evaluations +=
+      static_cast<long>(cv.column_groups.size()) + (cv.chain_rules.empty() ? 0 : 1);
   std::copy(state, state + cv.pattern.size, cv.perturbed.begin());
-  for (const auto& group : cv.column_groups) {
+  for (std::size_t g = 0; g < cv.column_groups.size(); ++g) {
+    const auto& group = cv.column_groups[g];
     for (int column : group) {
       const double scale = relative[column] * std::abs(state[column]) + absolute[column];
       cv.perturbed[static_cast<std::size_t>(column)] +=
@@ -255,16 +318,71 @@ int grouped_jacobian(realtype t, N_Vector y, N_Vector fy, SUNMatrix jacobian, vo
       const auto& rows = cv.pattern.rows_of_column[c];
       for (std::size_t k = 0; k < rows.size(); ++k) {
         const auto row = static_cast<std::size_t>(rows[k]);
+        if (!cv.chain_row.empty() && cv.chain_row[row]) continue;  // below
         slots.at(column, k) = (cv.perturbed_derivatives[row] - base[row]) / increment;
       }
+      if (!cv.chain_rules.empty()) cv.increments[c] = increment;
       cv.perturbed[c] = state[column];
     }
+    for (const auto& rule : cv.chain_rules) add_chain_entries(cv, rule, g, slots);
   }
   if (cv.warm_restarts) {
     cv.jacobian_step = cv.steps;
     copy_carried(cv, slots, CarryDirection::from_matrix);
   }
   return 0;
+}
+
+// A fan-in of this many sources makes a row the chain rule's (fewer cost little as they are).
+constexpr int kChainFromSources = 16;
+
+// Column groups for the finite differences. Rows read through a wide fan-in (chain rules) are
+// left out of the colouring; in their place come pseudo-rows, one for each source (its states)
+// and one for the row's direct states, so that each group moves at most one column per source
+// and one of the row's own: then the source changes apportion the row's change.
+std::vector<std::vector<int>> colour_columns(detail::CvodeHandles& cv, std::vector<FanInRow> rows) {
+  if (rows.empty()) return cv.pattern.column_groups();
+  const auto size = static_cast<std::size_t>(cv.pattern.size);
+  cv.chain_row.assign(size, 0);
+  for (const auto& row : rows) cv.chain_row[static_cast<std::size_t>(row.row)] = 1;
+  SparsityPattern colouring = cv.pattern;
+  for (auto& column_rows : colouring.rows_of_column) {
+    std::erase_if(column_rows,
+                  [&](int row) { return cv.chain_row[static_cast<std::size_t>(row)] != 0; });
+  }
+  int pseudo_row = cv.pattern.size;
+  const auto add_pseudo_row = [&](const std::vector<int>& columns) {
+    for (int column : columns)
+      colouring.rows_of_column[static_cast<std::size_t>(column)].push_back(pseudo_row);
+    ++pseudo_row;
+  };
+  for (const auto& row : rows) {
+    add_pseudo_row(row.direct_states);
+    for (const auto& states : row.source_states) add_pseudo_row(states);
+  }
+  auto groups = colouring.column_groups();
+  std::vector<std::size_t> group_of(size);
+  for (std::size_t g = 0; g < groups.size(); ++g)
+    for (int column : groups[g]) group_of[static_cast<std::size_t>(column)] = g;
+  for (auto& row : rows) {
+    detail::CvodeHandles::ChainRule rule;
+    rule.sensitivity.assign(row.sources.size(), 0.0);
+    rule.base_sources.assign(row.sources.size(), 0.0);
+    rule.direct_column.assign(groups.size(), -1);
+    rule.source_columns.assign(groups.size(), {});
+    for (int column : row.direct_states)
+      rule.direct_column[group_of[static_cast<std::size_t>(column)]] = column;
+    for (std::size_t k = 0; k < row.source_states.size(); ++k)
+      for (int column : row.source_states[k])
+        rule.source_columns[group_of[static_cast<std::size_t>(column)]].push_back(
+            {static_cast<int>(k), column});
+    rule.row = std::move(row);
+    cv.chain_rules.push_back(std::move(rule));
+  }
+  cv.base_derivatives.assign(size, 0.0);
+  cv.scratch_derivatives.assign(size, 0.0);
+  cv.increments.assign(size, 0.0);
+  return groups;
 }
 
 // The pattern is fixed for the whole run, so KLU's symbolic analysis (the fill-reducing
@@ -353,7 +471,7 @@ void Integrator::attach_linear_solver() {
   if (grouped || settings_.linear_solver == LinearSolverKind::band)
     cv.pattern = system_.jacobian_pattern();
   if (grouped) {
-    cv.column_groups = cv.pattern.column_groups();
+    cv.column_groups = colour_columns(cv, system_.fan_in_rows(kChainFromSources));
     cv.perturbed.assign(static_cast<std::size_t>(size), 0.0);
     cv.perturbed_derivatives.assign(static_cast<std::size_t>(size), 0.0);
   }
@@ -403,6 +521,8 @@ void Integrator::accumulate_statistics() {
     add(CVodeGetNumJacEvals, cv.memory, statistics_.jacobian_evaluations);
     statistics_.jacobian_evaluations -= cv.carried_jacobians;  // computed ones only
     cv.carried_jacobians = 0;
+    statistics_.rhs_evaluations_for_jacobian += cv.jacobian_rhs_evaluations;
+    cv.jacobian_rhs_evaluations = 0;
     add(CVodeGetNumLinRhsEvals, cv.memory, statistics_.rhs_evaluations_for_jacobian);
   }
 }

@@ -36,6 +36,10 @@ std::vector<std::vector<int>> SparsityPattern::column_groups() const {
   // Greedy colouring in column order; good enough for the chain and block structures here.
   std::vector<std::vector<int>> groups;
   std::vector<std::vector<char>> rows_used;
+  // Rows may extend past the square part (pseudo-rows the Integrator adds for its chain rule).
+  int rows_count = size;
+  for (const auto& rows : rows_of_column)
+    if (!rows.empty()) rows_count = std::max(rows_count, rows.back() + 1);
   for (int column = 0; column < size; ++column) {
     const auto& rows = rows_of_column[static_cast<std::size_t>(column)];
     std::size_t group = 0;
@@ -47,7 +51,7 @@ std::vector<std::vector<int>> SparsityPattern::column_groups() const {
     }
     if (group == groups.size()) {
       groups.emplace_back();
-      rows_used.emplace_back(static_cast<std::size_t>(size), 0);
+      rows_used.emplace_back(static_cast<std::size_t>(rows_count), 0);
     }
     groups[group].push_back(column);
     for (int row : rows) rows_used[group][static_cast<std::size_t>(row)] = 1;

@@ -518,7 +518,7 @@ const ChannelInfo* System::source_of(const Component& consumer, std::string_view
   return nullptr;
 }
 
-SparsityPattern System::jacobian_pattern() const {
+std::vector<std::vector<int>> System::signal_state_dependencies() const {
   // States each signal depends on, through chains of direct feedthrough.
   std::vector<std::vector<int>> signal_states(channels_.size());
   std::vector<char> resolved(channels_.size(), 0);
@@ -541,34 +541,92 @@ SparsityPattern System::jacobian_pattern() const {
     signal_states[index].assign(collected.begin(), collected.end());
     return signal_states[index];
   };
+  for (std::size_t signal = 0; signal < channels_.size(); ++signal)
+    resolve(resolve, static_cast<int>(signal));
+  return signal_states;
+}
 
+// The states derivative `s` of `component` reads, except through the input `skipped` (-1: none).
+std::set<int> System::derivative_columns(const std::vector<std::vector<int>>& signal_states,
+                                         std::size_t c, int s, int skipped) const {
+  const Component& component = *components_[c];
+  const auto deps = component.derivative_dependencies(s);
+  std::set<int> columns;
+  for (int d : deps.states) columns.insert(component.state_offset_ + d);
+  for (int i : deps.inputs) {
+    if (i == skipped) continue;
+    const auto input = static_cast<std::size_t>(i);
+    for (int k = 0; k < component.fan_in_count_[input]; ++k) {
+      const auto& upstream = signal_states[static_cast<std::size_t>(
+          component.fan_in_sources_[static_cast<std::size_t>(component.fan_in_begin_[input] + k)])];
+      columns.insert(upstream.begin(), upstream.end());
+    }
+  }
+  columns.insert(component.state_offset_ + s);  // the diagonal is always present in I - gamma J
+  return columns;
+}
+
+SparsityPattern System::jacobian_pattern() const {
+  const auto signal_states = signal_state_dependencies();
   SparsityPattern pattern;
   pattern.size = state_size();
   pattern.rows_of_column.assign(static_cast<std::size_t>(state_size()), {});
   for (std::size_t c = 0; c < components_.size(); ++c) {
-    const Component& component = *components_[c];
     for (int s = 0; s < state_counts_[c]; ++s) {
-      const int row = component.state_offset_ + s;
-      const auto deps = component.derivative_dependencies(s);
-      std::set<int> columns;
-      for (int d : deps.states) columns.insert(component.state_offset_ + d);
-      for (int i : deps.inputs) {
-        const auto input = static_cast<std::size_t>(i);
-        for (int k = 0; k < component.fan_in_count_[input]; ++k) {
-          const auto& upstream = resolve(
-              resolve,
-              component
-                  .fan_in_sources_[static_cast<std::size_t>(component.fan_in_begin_[input] + k)]);
-          columns.insert(upstream.begin(), upstream.end());
-        }
-      }
-      columns.insert(row);  // the diagonal is always present in I - gamma J
-      for (int column : columns)
+      const int row = components_[c]->state_offset_ + s;
+      for (int column : derivative_columns(signal_states, c, s, -1))
         pattern.rows_of_column[static_cast<std::size_t>(column)].push_back(row);
     }
   }
   for (auto& rows : pattern.rows_of_column) std::sort(rows.begin(), rows.end());
   return pattern;
+}
+
+std::vector<FanInRow> System::fan_in_rows(int min_sources) const {
+  const auto signal_states = signal_state_dependencies();
+  std::vector<FanInRow> rows;
+  for (std::size_t c = 0; c < components_.size(); ++c) {
+    const Component& component = *components_[c];
+    for (int s = 0; s < state_counts_[c]; ++s) {
+      for (int i : component.derivative_dependencies(s).inputs) {
+        const auto input = static_cast<std::size_t>(i);
+        if (component.fan_in_count_[input] < min_sources) continue;
+        FanInRow row{component.state_offset_ + s, static_cast<int>(c), {}, {}, {}};
+        for (int k = 0; k < component.fan_in_count_[input]; ++k) {
+          const int signal =
+              component
+                  .fan_in_sources_[static_cast<std::size_t>(component.fan_in_begin_[input] + k)];
+          row.sources.push_back(signal);
+          row.source_states.push_back(signal_states[static_cast<std::size_t>(signal)]);
+        }
+        const auto direct = derivative_columns(signal_states, c, s, i);
+        row.direct_states.assign(direct.begin(), direct.end());
+        rows.push_back(std::move(row));
+        break;  // one fan-in per row: a second one stays in the ordinary pattern
+      }
+    }
+  }
+  return rows;
+}
+
+double System::row_sensitivity(Context& context, double time, double signal_time,
+                               const double* state, const FanInRow& row, int signal, double step,
+                               double* scratch) const {
+  const Evaluation now = evaluation(context, time, signal_time, state);
+  const Component& owner = *components_[static_cast<std::size_t>(row.component)];
+  double& value = now.signals[signal];
+  const double original = value;
+  value = original + step;
+  owner.compute_outputs(now);
+  owner.compute_derivatives(now, scratch);
+  const double raised = scratch[row.row];
+  value = original - step;
+  owner.compute_outputs(now);
+  owner.compute_derivatives(now, scratch);
+  const double lowered = scratch[row.row];
+  value = original;
+  owner.compute_outputs(now);  // its outputs as they were
+  return (raised - lowered) / (2.0 * step);
 }
 
 }  // namespace tcpmsim

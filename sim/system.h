@@ -3,6 +3,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -68,6 +69,18 @@ struct MemberSet {
     std::vector<double> values;
   };
   std::vector<Property> properties;
+};
+
+// A derivative that reads many states through one fan-in input (a mass hanging on every muscle
+// of a bundle): its Jacobian row is dense, and finite differences over structurally orthogonal
+// columns would need a group per column. The Integrator finds its entries by the chain rule
+// through the fan-in's source signals instead.
+struct FanInRow {
+  int row = 0;                                  // the derivative's state index
+  int component = 0;                            // its owner
+  std::vector<int> sources;                     // the fan-in's source signals
+  std::vector<std::vector<int>> source_states;  // the states each source depends on
+  std::vector<int> direct_states;               // the states the row reads otherwise
 };
 
 // Components assembled into one ODE system y' = f(t, y). The System owns the components,
@@ -144,12 +157,23 @@ class System {
 
   // Structural non-zeros of df/dy (row = derivative, column = state).
   SparsityPattern jacobian_pattern() const;
+  // The derivatives that read at least `min_sources` outputs through one fan-in input.
+  std::vector<FanInRow> fan_in_rows(int min_sources) const;
+  // d f_row / d signal at (time, state) by central differences of the row's component alone
+  // (its outputs and derivatives with that one signal moved by +-step). The context's signals
+  // must hold the outputs at (time, state); they do again afterwards. `scratch` holds
+  // state_size() derivatives.
+  double row_sensitivity(Context& context, double time, double signal_time, const double* state,
+                         const FanInRow& row, int signal, double step, double* scratch) const;
 
  private:
   friend class SystemBuilder;
   System() = default;
   Evaluation evaluation(Context& context, double time, double signal_time,
                         const double* state) const;
+  std::vector<std::vector<int>> signal_state_dependencies() const;
+  std::set<int> derivative_columns(const std::vector<std::vector<int>>& signal_states,
+                                   std::size_t component, int state, int skipped_input) const;
   void assign_slices();
   void wire(const SystemBuilder& builder);
   void order_by_feedthrough();
