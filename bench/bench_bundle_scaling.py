@@ -18,15 +18,23 @@ import sys
 SIZES = (1, 10, 100, 1000)
 # Simulated seconds per case: the whole scenario where it is affordable.
 DURATION = {"klu": {1: 100, 10: 100, 100: 100, 1000: 100},
+            "uncoupled": {1: 100, 10: 100, 100: 100, 1000: 100},
             "dense": {1: 100, 10: 100, 100: 10, 1000: 0.05}}
+# "uncoupled": KLU on the bundle without contact conduction (its Jacobian block-diagonal), to
+# separate the 2-D thermal network's fill from everything else that grows with n.
+NO_CONTACT = "bundle.thermal={shielding: 0.6}"
 REPEATS = {1: 3, 10: 3, 100: 3, 1000: 2}
 
 
 def run_case(bench, config, solver, n):
     duration = DURATION[solver][n]
     repeats = 1 if solver == "dense" and n == 1000 else REPEATS[n]
-    command = [bench, config, str(repeats), f"bundle.count={n}", f"solver.linear_solver={solver}",
-               "solver.restart=warm", f"scenario.duration={duration} s", "output.rate=0.1 Hz"]
+    linear_solver = "dense" if solver == "dense" else "klu"
+    command = [bench, config, str(repeats), f"bundle.count={n}",
+               f"solver.linear_solver={linear_solver}", "solver.restart=warm",
+               f"scenario.duration={duration} s", "output.rate=0.1 Hz"]
+    if solver == "uncoupled":
+        command.append(NO_CONTACT)
     process = subprocess.Popen(command, stdout=subprocess.PIPE, text=True)
     output = process.stdout.read()
     _, status, usage = os.wait4(process.pid, 0)
@@ -52,16 +60,17 @@ def main():
     config = sys.argv[2] if len(sys.argv) > 2 else "bench/bundle_scaling.yaml"
     bench = os.path.join(build, "bench", "bench_integration")
     results = {solver: {n: run_case(bench, config, solver, n) for n in SIZES}
-               for solver in ("klu", "dense")}
+               for solver in ("klu", "uncoupled", "dense")}
     print("| muscles | states | KLU: s per simulated s | dense: s per simulated s | dense / KLU "
-          "| KLU peak memory (MB) |")
-    print("|---:|---:|---:|---:|---:|---:|")
+          "| KLU peak memory (MB) | KLU without contact conduction |")
+    print("|---:|---:|---:|---:|---:|---:|---:|")
     for n in SIZES:
         klu, dense = results["klu"][n], results["dense"][n]
         print(f"| {n} | {klu['states']} | {klu['per_second']:.3g} | {dense['per_second']:.3g} "
-              f"| {dense['per_second'] / klu['per_second']:.3g} | {klu['peak_mb']:.1f} |")
+              f"| {dense['per_second'] / klu['per_second']:.3g} | {klu['peak_mb']:.1f} "
+              f"| {results['uncoupled'][n]['per_second']:.3g} |")
     large = SIZES[1:]
-    for solver in ("klu", "dense"):
+    for solver in ("klu", "uncoupled", "dense"):
         exponent = slope(large, [results[solver][n]["per_second"] for n in large])
         print(f"{solver}: time per simulated second grows as n^{exponent:.2f} from n = 10 to 1000")
     peaks = [results["klu"][n]["peak_mb"] for n in SIZES]

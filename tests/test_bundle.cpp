@@ -503,6 +503,29 @@ TEST_CASE("A run cannot give a bundle's supply a negative power or its fan a spe
   Context fast = scenario.make_context();
   fast.set_parameter("bundle.thermal.fan.speed", 1.5);
   CHECK_THROWS_WITH(scenario.system->prepare(fast), Catch::Contains("fan speed between 0"));
+  // Assembled without contact conduction, its members are not coupled: a run cannot add it.
+  Context touching = scenario.make_context();
+  touching.set_parameter("bundle.thermal.contact_conductance", 1e-3);
+  CHECK_THROWS_WITH(scenario.system->prepare(touching),
+                    Catch::Contains("assembled without contact conduction"));
+}
+
+TEST_CASE("Without contact conduction the members' temperatures stay out of each other's rows") {
+  const auto pattern_size = [](const std::string& thermal) {
+    return scenario_from_text(
+               bundle_yaml(7,
+                           "  packing: {layout: hexagonal, pitch: 1.5 mm}\n  thermal: " + thermal +
+                               "\n  electrical: {wiring: individual, drive: {mode: power, "
+                               "power: 0.05 W}}\n",
+                           5.0))
+        .system->jacobian_pattern()
+        .non_zeros();
+  };
+  // Two states per member; with contact each temperature row reads its neighbours' as well:
+  // 12 touching pairs of the hexagon of seven, both ways.
+  CHECK(pattern_size("{shielding: 0.6, contact_conductance: 0 W/K}") -
+            pattern_size("{shielding: 0.6}") ==
+        24);
 }
 
 namespace {

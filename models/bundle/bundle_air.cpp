@@ -20,11 +20,12 @@ std::string fan_speed_problem(const Signal& speed, double duration) {
 
 BundleAir::BundleAir(std::string group, BundleAirParameters defaults,
                      ParameterBindings<BundleAirParameters> bindings, Fan fan,
-                     std::unique_ptr<Signal> fan_speed, double duration)
+                     std::unique_ptr<Signal> fan_speed, double duration, bool contact)
     : ParametricComponent(std::move(group), "bundle_air", defaults, std::move(bindings)),
       fan_(fan),
       fan_speed_(std::move(fan_speed)),
-      duration_(duration) {
+      duration_(duration),
+      contact_(contact) {
   if ((fan_ == Fan::prescribed) != (fan_speed_ != nullptr))
     throw std::invalid_argument("BundleAir: a speed signal exactly when the fan is prescribed");
 }
@@ -35,6 +36,7 @@ std::unique_ptr<BundleAir> BundleAir::from_config(const std::string& group, cons
   P p;
   ParameterBindings<P> bind;
   bind.quantity(node, "shielding", "1", ValueCheck::fraction(), p, bind.member(&P::shielding));
+  const bool contact = node.has("contact_conductance");
   bind.quantity_or(node, "contact_conductance", "W/K", 0.0, ValueCheck::non_negative(), p,
                    bind.member(&P::contact_conductance));
   std::unique_ptr<Signal> speed;
@@ -52,7 +54,7 @@ std::unique_ptr<BundleAir> BundleAir::from_config(const std::string& group, cons
     }
   }
   return std::make_unique<BundleAir>(group, p, std::move(bind), kind, std::move(speed),
-                                     signals.duration);
+                                     signals.duration, contact);
 }
 
 std::vector<InputDeclaration> BundleAir::inputs() const {
@@ -66,6 +68,10 @@ std::vector<SignalDeclaration> BundleAir::signals() const {
 }
 
 std::string BundleAir::check_parameters(const RunSetup& setup) const {
+  if (!contact_ && parameters_in(setup.context).contact_conductance != 0.0) {
+    return "contact_conductance: this bundle was assembled without contact conduction; give "
+           "thermal.contact_conductance in the scenario to couple its muscles";
+  }
   if (!fan_speed_) return {};
   const std::string problem = fan_speed_problem(signal(setup.context, 0), duration_);
   return problem.empty() ? problem : "fan.speed: " + problem;
@@ -89,8 +95,12 @@ struct ExchangeRun final : RunState {
 };
 }  // namespace
 
-PackedHeatExchange::PackedHeatExchange(std::string group, const BundleAir& air, int coordination)
-    : Component(std::move(group), "packed_heat_exchange"), air_(air), coordination_(coordination) {}
+PackedHeatExchange::PackedHeatExchange(std::string group, const BundleAir& air, int neighbours,
+                                       int coordination)
+    : Component(std::move(group), "packed_heat_exchange"),
+      air_(air),
+      neighbours_(neighbours),
+      coordination_(coordination) {}
 
 std::vector<OutputDeclaration> PackedHeatExchange::outputs() const {
   return {{"to_neighbours", "W"}, {"to_fan", "W"}};
@@ -107,9 +117,8 @@ std::unique_ptr<RunState> PackedHeatExchange::create_run_state(const RunSetup& s
   auto run = std::make_unique<ExchangeRun>();
   const BundleAirParameters air = air_.parameters_in(setup.context);
   run->contact_conductance = air.contact_conductance;
-  run->fan_conductance = packing::exposed_fraction(source_count(kNeighbourTemperatures),
-                                                   coordination_, air.shielding) *
-                         air.fan_conductance;
+  run->fan_conductance =
+      packing::exposed_fraction(neighbours_, coordination_, air.shielding) * air.fan_conductance;
   return run;
 }
 

@@ -28,7 +28,7 @@ class BundleAir final : public ParametricComponent<BundleAirParameters> {
   // A prescribed fan has its speed signal; the others have none.
   BundleAir(std::string group, BundleAirParameters defaults,
             ParameterBindings<BundleAirParameters> bindings, Fan fan,
-            std::unique_ptr<Signal> fan_speed, double duration);
+            std::unique_ptr<Signal> fan_speed, double duration, bool contact = true);
   // Keys shielding, contact_conductance, fan: {conductance, speed: <signal> | controller}
   // (no fan: none).
   static std::unique_ptr<BundleAir> from_config(const std::string& group, const ConfigNode& node,
@@ -38,6 +38,9 @@ class BundleAir final : public ParametricComponent<BundleAirParameters> {
   std::vector<InputDeclaration> inputs() const override;
   std::vector<SignalDeclaration> signals() const override;
   Fan fan() const { return fan_; }
+  // Whether touching muscles exchange heat (the scenario gives contact_conductance): without it
+  // the members' temperatures are not coupled at all, and their Jacobian stays block-diagonal.
+  bool contact() const { return contact_; }
   // A run's fan speed stays in [0, 1].
   std::string check_parameters(const RunSetup& setup) const override;
   void compute_outputs(const Evaluation& evaluation) const override;
@@ -47,6 +50,7 @@ class BundleAir final : public ParametricComponent<BundleAirParameters> {
   Fan fan_;
   std::unique_ptr<Signal> fan_speed_;  // a prescribed fan's
   double duration_;                    // of the scenario, over which the speed is checked
+  bool contact_;
 };
 
 // One member's heat exchange inside the bundle, a heat-loss term of its thermal node:
@@ -58,9 +62,10 @@ class PackedHeatExchange final : public Component {
  public:
   enum Input { kTemperature, kNeighbourTemperatures, kAmbientTemperature, kFanSpeed };
   enum Output { kToNeighbours, kToFan };
-  // Its touching muscles are the sources of neighbour_temperatures, of the `coordination` an
-  // inner one has; it reads the air's parameters as the run context sets them.
-  PackedHeatExchange(std::string group, const BundleAir& air, int coordination);
+  // It has `neighbours` touching muscles of the `coordination` an inner one has, the sources of
+  // neighbour_temperatures when the bundle has contact conduction; it reads the air's
+  // parameters as the run context sets them.
+  PackedHeatExchange(std::string group, const BundleAir& air, int neighbours, int coordination);
 
   std::vector<OutputDeclaration> outputs() const override;
   std::vector<InputDeclaration> inputs() const override;
@@ -69,6 +74,7 @@ class PackedHeatExchange final : public Component {
 
  private:
   const BundleAir& air_;
+  int neighbours_;
   int coordination_;
 };
 

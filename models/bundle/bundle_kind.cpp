@@ -54,10 +54,11 @@ void couple_heat(const Bundle& bundle, std::size_t k, const BundleAir& air,
   const std::string& member = bundle.members[k];
   const auto& neighbours = bundle.section.neighbours[k];
   const int coordination = bundle.section.coordination();
-  auto& exchange =
-      system.add(std::make_unique<PackedHeatExchange>(member + "/packing", air, coordination));
+  auto& exchange = system.add(std::make_unique<PackedHeatExchange>(
+      member + "/packing", air, static_cast<int>(neighbours.size()), coordination));
   system.connect(exchange, "temperature", member + ".temperature");
   for (const int other : neighbours) {
+    if (!air.contact()) break;  // no conduction: the members stay thermally uncoupled
     system.connect(exchange, "neighbour_temperatures",
                    bundle.members[static_cast<std::size_t>(other)] + ".temperature");
   }
