@@ -11,20 +11,15 @@
 #include "controllers/pid_controller.h"
 #include "controllers/self_sensing_estimator.h"
 #include "kinds/standard_kinds.h"
-#include "signals/control_task_signals.h"
 #include "sim/io/hdf5_writer.h"
-#include "sim/memory_record.h"
 #include "sim/parallel_runs.h"
-#include "sim/run.h"
 
 namespace tcpmsim {
 
 namespace {
 
 // Section 7.3.4's calibration, and the thesis' deflection controller used during the force one.
-constexpr double kCalibrationSettle = 30.0;  // [s] before averaging
-constexpr double kDeflectionAverage = 10.0;  // [s]
-constexpr double kForceAverage = 30.0;       // [s]
+constexpr double kForceAverage = 30.0;  // [s] (the deflection's: kCalibrationAverage)
 constexpr const char* kHoldDeflection = "load={type: deflection, deflection: 20 mm}";
 constexpr const char* kHoldForce = "load={type: force, force: 0.40 N}";
 constexpr const char* kDeflectionControl =
@@ -41,12 +36,6 @@ const T& required(const Scenario& scenario, const std::string& what) {
 // The estimator's calibration offsets (7.3.4), as run parameters.
 constexpr const char* kDeflectionOffset = "estimator.calibration.deflection_offset";
 constexpr const char* kForceOffset = "estimator.calibration.force_offset";
-
-// Adds `offset` to the parameter at `path`: the measured offsets add to those the scenario
-// configures (calibration_offset).
-void add_to(Context& context, const char* path, double offset) {
-  context.set_parameter(path, context.parameter(path) + offset);
-}
 
 // The three runs of one task, loaded up front: udunits2's parser is not thread-safe.
 struct PreparedTask {
@@ -69,7 +58,7 @@ PreparedTask prepare(const std::string& config, const ControlTaskSettings& setti
     prepared.deflection_calibration =
         load_scenario(config,
                       with(settings.overrides,
-                           {kHoldDeflection, seconds(kCalibrationSettle + kDeflectionAverage)}),
+                           {kHoldDeflection, seconds(kCalibrationSettle + kCalibrationAverage)}),
                       units);
     prepared.force_calibration = load_scenario(
         config,
@@ -93,7 +82,7 @@ ControlTaskResult run_task(PreparedTask& prepared, bool calibrate) {
     const auto deflection = simulate_in_memory(prepared.deflection_calibration, hold_deflection);
     result.deflection_offset =
         offset_over(deflection, "muscle/deflection", "estimator/deflection", kCalibrationSettle,
-                    kCalibrationSettle + kDeflectionAverage);
+                    kCalibrationSettle + kCalibrationAverage);
     Context hold_force = prepared.force_calibration.make_context();
     add_to(hold_force, kDeflectionOffset, result.deflection_offset);
     const auto force = simulate_in_memory(prepared.force_calibration, hold_force);
@@ -107,27 +96,9 @@ ControlTaskResult run_task(PreparedTask& prepared, bool calibrate) {
   // The task starts at the reference's first change; before it the muscle settles.
   const Signal& reference =
       task.signal(*prepared.task.system->signal_slot(controller.group(), "reference"));
-  const double start = reference.next_breakpoint_after(0.0);
-  const std::string truth = result.controls_deflection ? "muscle/deflection" : "muscle/force";
-  const std::string estimate =
-      result.controls_deflection ? "estimator/deflection" : "estimator/force";
-  // From one sample before the first change, so that the first step is seen as one.
-  const auto first_after = static_cast<std::size_t>(
-      std::lower_bound(record.time.begin(), record.time.end(), start - 1e-9) - record.time.begin());
-  std::vector<double> time, r, y;
-  for (std::size_t k = first_after > 0 ? first_after - 1 : 0; k < record.time.size(); ++k) {
-    time.push_back(record.time[k]);
-    r.push_back(record["controller/reference"][k]);
-    y.push_back(record[truth][k]);
-    if (record.time[k] >= start - 1e-9)
-      result.estimation_errors.push_back(record[estimate][k] - record[truth][k]);
-  }
-  if (const auto* sweep = dynamic_cast<const SteppedSineSignal*>(&reference)) {
-    result.response = sweep_frequency_response(time, r, y, sweep->schedule());
-    result.bandwidth = bandwidth_3db(result.response);
-  } else {
-    result.rises = step_rise_times(time, r, y);
-  }
+  analyse_task(record, reference, "controller/reference",
+               result.controls_deflection ? "muscle/deflection" : "muscle/force",
+               result.controls_deflection ? "estimator/deflection" : "estimator/force", result);
   result.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return result;

@@ -24,7 +24,7 @@ std::string run_control_tasks_command(const ControlTasksOptions& options, std::o
   write_control_task_report(results, output,
                             [&](Hdf5Writer& file) { write_pair_tasks(file, pair_results); });
   if (!options.quiet) {
-    out << format_control_task_report(results);
+    if (!results.empty()) out << format_control_task_report(results);
     if (!pair_results.empty()) out << format_pair_comparison(pair_results, results);
     char line[128];
     std::snprintf(line, sizeof line, "\n%zu tasks (with their calibrations) in %.2f s\nwrote ",

@@ -12,9 +12,7 @@
 #include "signals/control_task_signals.h"
 #include "signals/piecewise_constant_signal.h"
 #include "sim/config/config_error.h"
-#include "sim/memory_record.h"
 #include "sim/parallel_runs.h"
-#include "sim/run.h"
 
 namespace tcpmsim {
 
@@ -23,9 +21,6 @@ namespace {
 // Section 7.3.4's deflection calibration: the loop holds the joint's middle through
 // self-sensing (as the thesis calibrates force under deflection control), and each muscle's
 // offset is mean(true - estimated deflection) there, wherever the biased loop settles.
-constexpr double kCalibrationSettle = 30.0;  // [s] before averaging
-constexpr double kDeflectionAverage = 10.0;  // [s]
-constexpr const char* kHoldMiddle = "controller.reference=0 rad";
 
 // The names a pair task's analysis reads: the joint's, and each side's estimator (none when
 // the controller reads the joint's encoder).
@@ -78,9 +73,10 @@ PreparedPairTask prepare(const std::string& config, const ControlTaskSettings& s
   check_reference(config, prepared.task, prepared.names);
   if (settings.calibrate && prepared.names.self_sensing()) {
     std::vector<std::string> hold = settings.overrides;
-    hold.insert(hold.end(),
-                {kHoldMiddle, "scenario.duration=" +
-                                  std::to_string(kCalibrationSettle + kDeflectionAverage) + " s"});
+    hold.insert(
+        hold.end(),
+        {prepared.names.controller + ".reference=0 rad",
+         "scenario.duration=" + std::to_string(kCalibrationSettle + kCalibrationAverage) + " s"});
     prepared.calibration = load_scenario(config, hold, units);
   }
   return prepared;
@@ -90,16 +86,13 @@ void calibrate(PreparedPairTask& prepared, PairTaskResult& result, Context& task
   const PairNames& n = prepared.names;
   Context hold = prepared.calibration.make_context();
   const auto record = simulate_in_memory(prepared.calibration, hold);
-  const double end = kCalibrationSettle + kDeflectionAverage;
+  const double end = kCalibrationSettle + kCalibrationAverage;
   result.left_offset = offset_over(record, n.joint + "/left_deflection",
                                    n.left_estimator + "/deflection", kCalibrationSettle, end);
   result.right_offset = offset_over(record, n.joint + "/right_deflection",
                                     n.right_estimator + "/deflection", kCalibrationSettle, end);
-  for (const auto& [estimator, offset] : {std::pair{n.left_estimator, result.left_offset},
-                                          std::pair{n.right_estimator, result.right_offset}}) {
-    const std::string path = offset_path(estimator);
-    task.set_parameter(path, task.parameter(path) + offset);
-  }
+  add_to(task, offset_path(n.left_estimator), result.left_offset);
+  add_to(task, offset_path(n.right_estimator), result.right_offset);
 }
 
 PairTaskResult run_task(PreparedPairTask& prepared, bool calibrated) {
@@ -109,27 +102,12 @@ PairTaskResult run_task(PreparedPairTask& prepared, bool calibrated) {
   Context task = prepared.task.make_context();
   if (calibrated && n.self_sensing()) calibrate(prepared, result, task);
   const auto record = simulate_in_memory(prepared.task, task, &result.statistics);
-  // The task starts at the reference's first change; before it the joint settles.
+  // The task starts at the reference's first change; before it the joint settles. Under
+  // self-sensing the controller's angle is the estimate; under the encoder, a reading.
   const Signal& reference =
       task.signal(*prepared.task.system->signal_slot(n.controller, "reference"));
-  const double start = reference.next_breakpoint_after(0.0);
-  const auto first_after = static_cast<std::size_t>(
-      std::lower_bound(record.time.begin(), record.time.end(), start - 1e-9) - record.time.begin());
-  std::vector<double> time, r, y;
-  for (std::size_t k = first_after > 0 ? first_after - 1 : 0; k < record.time.size(); ++k) {
-    time.push_back(record.time[k]);
-    r.push_back(record[n.controller + "/reference"][k]);
-    y.push_back(record[n.joint + "/angle"][k]);
-    // Under self-sensing the controller's angle is the estimate; under the encoder, a reading.
-    if (n.self_sensing() && record.time[k] >= start - 1e-9)
-      result.estimation_errors.push_back(record[n.controller + "/angle"][k] - y.back());
-  }
-  if (const auto* sweep = dynamic_cast<const SteppedSineSignal*>(&reference)) {
-    result.response = sweep_frequency_response(time, r, y, sweep->schedule());
-    result.bandwidth = bandwidth_3db(result.response);
-  } else {
-    result.rises = step_rise_times(time, r, y);
-  }
+  analyse_task(record, reference, n.controller + "/reference", n.joint + "/angle",
+               n.self_sensing() ? n.controller + "/angle" : "", result);
   return result;
 }
 

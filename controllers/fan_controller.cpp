@@ -1,7 +1,6 @@
 #include "controllers/fan_controller.h"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 
 #include "controllers/controller_facts.h"
@@ -22,7 +21,6 @@ struct FanController::Run final : RunState {
   Run(const PidSettings& settings, double period) : law(settings, period) {}
   DiscretePid law;
   long last_index = 0;
-  bool sampled = false;
   double speed = kSpeedOff;
   double measured = std::numeric_limits<double>::quiet_NaN();
   double reference = std::numeric_limits<double>::quiet_NaN();
@@ -107,8 +105,8 @@ double FanController::measured(const Evaluation& evaluation) const {
 
 void FanController::sample(const Evaluation& evaluation, long index) const {
   Run& run = mutable_run_state<Run>(evaluation);
-  if (!run.sampled || index != run.last_index + 1) run.law.reset();
-  run.sampled = true;
+  // Every sample updates the law, so a law not yet started is a first sample.
+  if (!run.law.started() || index != run.last_index + 1) run.law.reset();
   run.last_index = index;
   const Signal& reference = signal(evaluation, 0);
   run.reference = PidController::reference_at(reference, evaluation.time);
@@ -126,10 +124,10 @@ void build_fan_controller(const ConfigNode& node, const std::string& name, Scena
   const auto& bundle = build.linked(node, "bundle", kBundleCategory);
   const BundleFacts* facts = build.facts<BundleFacts>(bundle.name);
   if (!facts) node.at("bundle").fail("expected a bundle; " + bundle.name + " publishes none");
-  if (facts->fan != BundleFacts::Fan::commanded) {
+  if (facts->fan != BundleAir::Fan::commanded) {
     node.at("bundle").fail(
         "the fan of " + bundle.name +
-        (facts->fan == BundleFacts::Fan::none
+        (facts->fan == BundleAir::Fan::none
              ? " does not exist: give the bundle thermal.fan: {conductance, speed: controller}"
              : " has a prescribed speed: set its thermal.fan.speed to controller"));
   }

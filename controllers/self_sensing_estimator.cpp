@@ -169,19 +169,10 @@ void SelfSensingEstimator::sample(const Evaluation& evaluation, long index) cons
 
 double SelfSensingEstimation::model_deflection(double inductance_measure) const {
   const InductanceLaw& law = parameters_.inductance;
-  double deflection = law.deflection(inductance_measure, law.reference_temperature);  // (7.4)
-  if (!parameters_.mutual_measure) return deflection;
-  constexpr int kMostIterations = 50;
-  constexpr double kAgreement = 1e-15;  // [m]
-  constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
-  for (int k = 0; k < kMostIterations; ++k) {
-    const double own = inductance_measure - parameters_.mutual_measure(deflection);
-    if (!(own > law.lambda_0)) return kUnknown;  // outside (7.4)'s domain once uncoupled
-    const double next = law.deflection(own, law.reference_temperature);
-    if (std::abs(next - deflection) <= kAgreement) return next;
-    deflection = next;
-  }
-  return kUnknown;  // no fixed point: a coupling as steep as the law itself
+  if (!parameters_.mutual_measure)
+    return law.deflection(inductance_measure, law.reference_temperature);  // (7.4)
+  return law.coupled_deflection(inductance_measure, law.reference_temperature,
+                                parameters_.mutual_measure);
 }
 
 const SelfSensingEstimate& SelfSensingEstimation::process(double inductance_measure,

@@ -49,11 +49,16 @@ struct detail::CvodeHandles {
   std::vector<double> perturbed_derivatives;
   // Dense rows read through a fan-in (a load on every member), by the chain rule.
   struct ChainRule {
+    // An entry of the rule's row: its column, and its place in that column of the pattern.
+    struct Entry {
+      int source;  // through which source it moves the row (-1: directly)
+      int column;
+      std::size_t place;
+    };
     FanInRow row;
-    std::vector<double> sensitivity;   // d f_row / d source, at the Jacobian's state
-    std::vector<double> base_sources;  // the sources there
-    std::vector<int> direct_column;    // per column group: the row's own column in it, or -1
-    std::vector<std::vector<std::pair<int, int>>> source_columns;  // per group: (source, column)
+    std::vector<double> sensitivity;          // d f_row / d source, at the Jacobian's state
+    std::vector<double> base_sources;         // the sources there
+    std::vector<std::vector<Entry>> entries;  // per column group: the row's entries it moves
   };
   std::vector<ChainRule> chain_rules;
   std::vector<char> chain_row;  // per state: its row is a chain rule's
@@ -231,33 +236,25 @@ void prepare_chain_rules(detail::CvodeHandles& cv, double t, const double* state
   }
 }
 
-// Where row `row` sits in column `column` of the pattern.
-std::size_t entry_in_column(const SparsityPattern& pattern, int column, int row) {
-  const auto& rows = pattern.rows_of_column[static_cast<std::size_t>(column)];
-  return static_cast<std::size_t>(std::lower_bound(rows.begin(), rows.end(), row) - rows.begin());
-}
-
 // Group g's contribution to a chain rule's row: through each source that one of the group's
 // columns moved, sensitivity times the source's change; the rest of the row's change is its own
-// (direct) column's.
+// (direct) column's, which the colouring puts in the group after the sources' entries.
 void add_chain_entries(detail::CvodeHandles& cv, const detail::CvodeHandles::ChainRule& rule,
                        std::size_t g, const PatternSlots& slots) {
   const auto& signals = cv.context->signals();
   const auto r = static_cast<std::size_t>(rule.row.row);
-  double through_sources = 0.0;
-  for (const auto& [k, column] : rule.source_columns[g]) {
-    const auto source = static_cast<std::size_t>(k);
-    const double change =
-        rule.sensitivity[source] *
-        (signals[static_cast<std::size_t>(rule.row.sources[source])] - rule.base_sources[source]);
-    through_sources += change;
-    slots.at(column, entry_in_column(cv.pattern, column, rule.row.row)) +=
-        change / cv.increments[static_cast<std::size_t>(column)];
-  }
-  if (const int column = rule.direct_column[g]; column >= 0) {
-    const double change = cv.perturbed_derivatives[r] - cv.base_derivatives[r] - through_sources;
-    slots.at(column, entry_in_column(cv.pattern, column, rule.row.row)) +=
-        change / cv.increments[static_cast<std::size_t>(column)];
+  double remainder = cv.perturbed_derivatives[r] - cv.base_derivatives[r];
+  for (const auto& entry : rule.entries[g]) {
+    double change = remainder;  // what the sources left, for the direct entry
+    if (entry.source >= 0) {
+      const auto source = static_cast<std::size_t>(entry.source);
+      change =
+          rule.sensitivity[source] *
+          (signals[static_cast<std::size_t>(rule.row.sources[source])] - rule.base_sources[source]);
+      remainder -= change;
+    }
+    slots.at(entry.column, entry.place) +=
+        change / cv.increments[static_cast<std::size_t>(entry.column)];
   }
 }
 
@@ -368,14 +365,16 @@ std::vector<std::vector<int>> colour_columns(detail::CvodeHandles& cv, std::vect
     detail::CvodeHandles::ChainRule rule;
     rule.sensitivity.assign(row.sources.size(), 0.0);
     rule.base_sources.assign(row.sources.size(), 0.0);
-    rule.direct_column.assign(groups.size(), -1);
-    rule.source_columns.assign(groups.size(), {});
-    for (int column : row.direct_states)
-      rule.direct_column[group_of[static_cast<std::size_t>(column)]] = column;
+    rule.entries.assign(groups.size(), {});
+    const auto add = [&](int source, int column) {
+      const auto& rows_here = cv.pattern.rows_of_column[static_cast<std::size_t>(column)];
+      const auto place = static_cast<std::size_t>(
+          std::lower_bound(rows_here.begin(), rows_here.end(), row.row) - rows_here.begin());
+      rule.entries[group_of[static_cast<std::size_t>(column)]].push_back({source, column, place});
+    };
     for (std::size_t k = 0; k < row.source_states.size(); ++k)
-      for (int column : row.source_states[k])
-        rule.source_columns[group_of[static_cast<std::size_t>(column)]].push_back(
-            {static_cast<int>(k), column});
+      for (int column : row.source_states[k]) add(static_cast<int>(k), column);
+    for (int column : row.direct_states) add(-1, column);  // after the sources: the remainder
     rule.row = std::move(row);
     cv.chain_rules.push_back(std::move(rule));
   }
@@ -598,8 +597,8 @@ void Integrator::start_segment(double start, bool first) {
     check(CVodeReInit(cv.memory, start, cv.state), "CVodeReInit");
     if (cv.warm_restarts) {
       // A breakpoint changes inputs, not the time scales of the state: the new segment starts
-      // with the last Jacobian and with the first step the last restart got accepted (order 1
-      // after a discontinuity), instead of CVODE's estimate from scratch.
+      // with the last Jacobian and with the step learnt at the last restart
+      // (first_step_after_restart), instead of CVODE's estimate from scratch.
       cv.offer_carried_jacobian = true;
       if (cv.restart_step > 0.0)
         check(CVodeSetInitStep(cv.memory, cv.restart_step), "CVodeSetInitStep");

@@ -82,10 +82,16 @@ TEST_CASE("Hexagonal and square packings fill ring by ring, and only touching mu
   }
   CHECK(corners == 6);
   CHECK(edges == 6);
-  // Neighbourhood is symmetric: every pair is counted from both sides.
-  std::size_t ends = 0;
-  for (const auto& list : hexagon.neighbours) ends += list.size();
-  CHECK(ends == 2 * (6 * 7 + 6 * 3 + 6 * 4) / 2);
+  // Neighbourhood is symmetric, and neighbours touch: exactly one pitch apart.
+  for (std::size_t i = 0; i < hexagon.neighbours.size(); ++i) {
+    for (const int j : hexagon.neighbours[i]) {
+      const auto& back = hexagon.neighbours[static_cast<std::size_t>(j)];
+      CHECK(std::count(back.begin(), back.end(), static_cast<int>(i)) == 1);
+      const auto& a = hexagon.centres[i];
+      const auto& b = hexagon.centres[static_cast<std::size_t>(j)];
+      CHECK(std::hypot(a[0] - b[0], a[1] - b[1]) == Approx(pitch).epsilon(1e-12));
+    }
+  }
 
   const auto square = packing::cross_section(PackingLayout::square, 9, pitch);
   CHECK(square.coordination() == 4);
@@ -429,6 +435,12 @@ TEST_CASE("A member whose signal a run changes has its own description under /in
   file.openDataSet("/bundle/drive/power").read(power.data(), H5::PredType::NATIVE_DOUBLE);
   CHECK(power[3 * 5 + 1] == 0.2);
   CHECK(power[3 * 5 + 0] == 0.05);
+  // ...and heated with it: m1 and m2 sit alike (one neighbour each, no contact conduction), so
+  // from the same start their rises stay in the ratio of their powers, 0.2 / 0.05.
+  std::vector<double> temperature(6 * 3);
+  file.openDataSet("/bundle/temperature").read(temperature.data(), H5::PredType::NATIVE_DOUBLE);
+  CHECK((temperature[3 * 5 + 1] - kAmbient) / (temperature[3 * 5 + 2] - kAmbient) ==
+        Approx(4.0).epsilon(1e-9));
   file.close();
   std::filesystem::remove(path);
 }
@@ -571,6 +583,10 @@ TEST_CASE("A fan controller regulates the hottest member, or the members' mean")
   // The shielded centre is the hottest; the ring stays below the reference.
   CHECK(hottest[member(0, "/temperature")].back() - kAmbient == Approx(100.0).margin(1e-6));
   CHECK(hottest["controller/fan_speed"].back() == Approx(0.75));
+  // The ring (f = 1 - 0.6 * 3/6 = 0.7, no contact conduction) under the same fan.
+  for (int k = 1; k < 7; ++k)
+    CHECK(hottest[member(k, "/temperature")].back() - kAmbient ==
+          Approx(0.2 / (0.7 * (kConductance + 4e-3 * 0.75))).epsilon(1e-6));
   for (int k = 1; k < 7; ++k)
     CHECK(hottest[member(k, "/temperature")].back() < hottest[member(0, "/temperature")].back());
   const auto mean = simulate(cooled_bundle(7, 100.0, "mean"));
@@ -578,6 +594,10 @@ TEST_CASE("A fan controller regulates the hottest member, or the members' mean")
   for (int k = 0; k < 7; ++k) sum += mean[member(k, "/temperature")].back();
   CHECK(sum / 7.0 - kAmbient == Approx(100.0).margin(1e-6));
   CHECK(mean["controller/measured_temperature"].back() == Approx(sum / 7.0).epsilon(1e-9));
+  // Each member's rise is P / (f (hA + G_f s)), so the mean is 100 K where
+  // hA + G_f s = P (1/0.4 + 6/0.7) / 7 / 100 K.
+  const double cooling = 0.2 * (1.0 / 0.4 + 6.0 / 0.7) / 7.0 / 100.0;
+  CHECK(mean["controller/fan_speed"].back() == Approx((cooling - kConductance) / 4e-3));
 }
 
 TEST_CASE("A commanded fan needs exactly its controller") {
@@ -647,7 +667,8 @@ TEST_CASE(
   CHECK(sparse.statistics.nonlinear_iterations < 1.05 * dense.statistics.nonlinear_iterations);
   CHECK(sparse.statistics.nonlinear_convergence_failures <=
         dense.statistics.nonlinear_convergence_failures + 2);
-  CHECK(max_abs_difference(sparse["load/deflection"], dense["load/deflection"]) < 50 * 1e-9 * 0.05);
+  CHECK(max_abs_difference(sparse["load/deflection"], dense["load/deflection"]) <
+        allowed(1e-9, 0.05));
   // 42 states: dense differences take 42 evaluations per Jacobian, the chain rule a handful.
   CHECK(dense.statistics.rhs_evaluations_for_jacobian ==
         42 * dense.statistics.jacobian_evaluations);

@@ -4,9 +4,11 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "analysis/statistics.h"
 #include "models/bundle/bundle_magnetics.h"
 #include "models/inductance/parallel_coils.h"
 #include "tests/support/test_support.h"
@@ -66,17 +68,9 @@ std::string member(int k, const std::string& channel) {
   return "bundle/m" + std::to_string(k) + channel;
 }
 
-double mean(const std::vector<double>& values, std::size_t from) {
-  double sum = 0.0;
-  for (std::size_t s = from; s < values.size(); ++s) sum += values[s];
-  return sum / static_cast<double>(values.size() - from);
-}
-
-double deviation(const std::vector<double>& values, std::size_t from) {
-  const double centre = mean(values, from);
-  double sum = 0.0;
-  for (std::size_t s = from; s < values.size(); ++s) sum += std::pow(values[s] - centre, 2);
-  return std::sqrt(sum / static_cast<double>(values.size() - from));
+// The values from sample `from` on.
+std::span<const double> settled_part(const std::vector<double>& values, std::size_t from) {
+  return std::span<const double>(values).subspan(from);
 }
 
 }  // namespace
@@ -123,13 +117,15 @@ TEST_CASE("Coupling biases self-sensed deflection; the estimator's own model of 
     const double biased = kLambdaL / (measured - kLambda0) - kLambdaX;
     const auto& raw = plain[member(k, "/estimator/deflection")];
     const auto& fixed = compensated[member(k, "/estimator/deflection")];
-    const double noise = deviation(fixed, settled);
+    const double noise = analysis::standard_deviation(settled_part(fixed, settled));
     // The bias: 3.4 mm at the centre, 1.6 mm on the ring, well above the sensing noise.
     CHECK(biased - kDeflection > 3.0 * noise);
     // The same plant and noise in both runs: the compensation shifts the estimate by the bias.
-    CHECK(mean(raw, settled) - mean(fixed, settled) == Approx(biased - kDeflection).epsilon(0.03));
+    CHECK(analysis::mean(settled_part(raw, settled)) -
+              analysis::mean(settled_part(fixed, settled)) ==
+          Approx(biased - kDeflection).epsilon(0.03));
     // Compensated, the estimate's mean error is within its noise.
-    CHECK(std::abs(mean(fixed, settled) - kDeflection) < noise);
+    CHECK(std::abs(analysis::mean(settled_part(fixed, settled)) - kDeflection) < noise);
   }
 }
 

@@ -32,6 +32,10 @@ TEST_CASE("Far apart side by side, two rings are coplanar dipoles: M = -mu0 pi a
   const double d = 200e-3;
   CHECK(parallel_loops_mutual_inductance(a, b, 0.0, d) ==
         Approx(mu0 * std::numbers::pi * a * a * b * b / (2.0 * d * d * d)).epsilon(1e-4));
+  // In between, (3 cos^2 theta - 1) / 2 of that: at 45 degrees a quarter of the axial value.
+  const double offset = d / std::sqrt(2.0);
+  CHECK(parallel_loops_mutual_inductance(a, b, offset, offset) ==
+        Approx(mu0 * std::numbers::pi * a * a * b * b * 0.5 / (4.0 * d * d * d)).epsilon(1e-4));
 }
 
 TEST_CASE("The mutual inductance of two rings is symmetric in the rings and in the offset") {

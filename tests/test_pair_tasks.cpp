@@ -11,6 +11,7 @@
 
 #include "analysis/control_tasks_command.h"
 #include "analysis/pair_task_runner.h"
+#include "analysis/statistics.h"
 #include "sim/memory_record.h"
 #include "sim/run.h"
 #include "tests/support/test_support.h"
@@ -20,6 +21,7 @@ using namespace tcpmsim::testing;
 
 namespace {
 
+// The upper median (the middle value; of an even count, the higher of the two), as the report.
 double median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   return values[values.size() / 2];
@@ -65,6 +67,15 @@ TEST_CASE("Each muscle's calibration offset removes its estimator's deflection b
     // What remains is the loop moving a little once its estimates are corrected.
     CHECK(std::abs(error / count) < 0.1 * std::abs(offset));
   }
+  // The task runs with them: the self-sensed angle, ((x_l - x0) - (x_r - x0)) / (2 r), moves
+  // against the uncalibrated run by (o_left - o_right) / (2 r), r = 10 mm.
+  settings.calibrate = false;
+  const auto plain = run_pair_tasks({config}, settings, shared_units());
+  const auto mean_error = [](const PairTaskResult& result) {
+    return analysis::mean(result.estimation_errors);
+  };
+  CHECK(mean_error(results[0]) - mean_error(plain[0]) ==
+        Approx((results[0].left_offset - results[0].right_offset) / (2 * 10e-3)).epsilon(0.1));
 }
 
 TEST_CASE("The pair drives both directions by heating; the single muscle waits for cooling") {

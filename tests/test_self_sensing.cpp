@@ -116,3 +116,20 @@ TEST_CASE("The drive's power law (7.2) reproduces the thesis' power limits") {
   CHECK(drive.power(0.85, 10.18) == Approx(3.12).margin(0.005));
   CHECK(drive.power(0.15, 10.18) == Approx(0.10).margin(0.005));
 }
+
+TEST_CASE("With a coupling term the inversion returns the deflection that produced the sum") {
+  // Table 6.4's coil with lambda_T, and a neighbour's mutual inductance that grows with x
+  // (nanohenries against the coil's microhenries, as in a bundle).
+  const auto law = table_6_4_inductance();
+  const auto coupling = [](double x) { return -5e-9 - 2e-7 * x; };
+  const double temperature = 330.0;
+  for (double x : {0.0, 0.01, 0.02, 0.04}) {
+    const double measured = law(x, temperature) + coupling(x);
+    CHECK(law.coupled_deflection(measured, temperature, coupling) == Approx(x).margin(1e-12));
+    // Ignoring the coupling mistakes it for deflection.
+    CHECK(std::abs(law.deflection(measured, temperature) - x) > 1e-4);
+  }
+  // A measure that the coupling would push to or below lambda_0 + lambda_T (T - T_ref) is none.
+  const double floor = law.lambda_0 + law.lambda_T * (temperature - kZeroCelsius);
+  CHECK(std::isnan(law.coupled_deflection(floor + 1e-9, temperature, [](double) { return 2e-9; })));
+}

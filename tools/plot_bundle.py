@@ -40,7 +40,8 @@ def main():
     index = len(time) - 1 if arguments.time is None else int(np.argmin(np.abs(time - arguments.time)))
 
     figure, (section, traces) = plt.subplots(1, 2, figsize=(11, 4.6), gridspec_kw={"width_ratios": [1, 1.5]})
-    pitch = min(np.hypot(x[i] - x[j], y[i] - y[j]) for i in range(len(x)) for j in range(i)) if len(x) > 1 else 1.0
+    # Member 0 is the centre; its nearest neighbour is one pitch away.
+    pitch = np.hypot(x[1:] - x[0], y[1:] - y[0]).min() if len(x) > 1 else 1.0
     colours = plt.get_cmap("inferno")
     low, high = temperature[index].min(), temperature[index].max()
     span = max(high - low, 1e-9)
@@ -59,7 +60,7 @@ def main():
 
     shades = plt.get_cmap("viridis")
     most = max(neighbours.max(), 1)
-    for k, name in enumerate(members):
+    for k in range(len(members)):
         traces.plot(time, temperature[:, k], color=shades(neighbours[k] / most), linewidth=0.8)
     for count in sorted(set(neighbours.astype(int))):
         traces.plot([], [], color=shades(count / most), label=f"{count} neighbours")

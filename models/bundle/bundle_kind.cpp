@@ -45,7 +45,6 @@ struct Bundle {
   std::string name;
   std::vector<std::string> members;  // instance names "b/m00"
   BundleCrossSection section;
-  double pitch = 0.0;  // [m] between touching centres
 };
 
 // Member k's packed convection and its exchange with its neighbours and the fan.
@@ -130,7 +129,7 @@ void couple_coils(const ConfigNode& magnetic, const Bundle& bundle, ScenarioBuil
     magnetic.fail(
         "mutual inductances are in henries: give the muscles' inductance in henries, "
         "not as the measure L*");
-  const auto mutual = NeighbourMutual::from_config(magnetic, bundle.pitch);
+  const auto mutual = NeighbourMutual::from_config(magnetic, bundle.section.pitch);
   SystemBuilder& system = build.system();
   for (std::size_t k = 0; k < bundle.members.size(); ++k) {
     const std::string& member = bundle.members[k];
@@ -138,18 +137,17 @@ void couple_coils(const ConfigNode& magnetic, const Bundle& bundle, ScenarioBuil
         member + "/magnetic", mutual, static_cast<int>(bundle.section.neighbours[k].size())));
     system.connect(term, "deflection", member + ".deflection");
     system.connect(member + ".mutual_inductances", member + "/magnetic.mutual_inductance");
-    build.publish(
-        member + "/magnetic",
-        MemberCouplingFacts{static_cast<int>(bundle.section.neighbours[k].size()), bundle.pitch});
+    build.publish(member + "/magnetic",
+                  MemberCouplingFacts{static_cast<int>(bundle.section.neighbours[k].size()),
+                                      bundle.section.pitch});
   }
 }
 
 // A fan with speed: controller exports its command as "<bundle>.fan_command", and the scenario
 // must have a controller that drives it.
-BundleFacts::Fan expect_fan_command(const ConfigNode& node, const std::string& name,
-                                    const BundleAir& air, ScenarioBuilder& build) {
-  if (air.fan() == BundleAir::Fan::none) return BundleFacts::Fan::none;
-  if (air.fan() == BundleAir::Fan::prescribed) return BundleFacts::Fan::prescribed;
+BundleAir::Fan expect_fan_command(const ConfigNode& node, const std::string& name,
+                                  const BundleAir& air, ScenarioBuilder& build) {
+  if (air.fan() != BundleAir::Fan::commanded) return air.fan();
   SystemBuilder& system = build.system();
   const std::string port = name + ".fan_command";
   system.export_input(port, air, "fan_command");
@@ -160,16 +158,13 @@ BundleFacts::Fan expect_fan_command(const ConfigNode& node, const std::string& n
           "no controller commands this fan: add one (type: fan, bundle: <name>) or give "
           "the speed as a signal");
   });
-  return BundleFacts::Fan::commanded;
+  return BundleAir::Fan::commanded;
 }
 
 void build_bundle(const ConfigNode& node, const std::string& name, ScenarioBuilder& build) {
   node.declare({"count", "packing", "muscle", "spread", "thermal", "electrical", "magnetic"});
   const int count = static_cast<int>(node.integer("count", ValueCheck::between(1, 100000)));
-  Bundle bundle{name,
-                {},
-                read_cross_section(node.at("packing"), count),
-                node.at("packing").quantity("pitch", "m", ValueCheck::positive())};
+  Bundle bundle{name, {}, read_cross_section(node.at("packing"), count)};
   const auto ids = member_ids(count);
   for (const auto& id : ids) bundle.members.push_back(name + "/" + id);
 

@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "models/bundle/bundle_air.h"
 #include "sim/registry.h"
 
 namespace tcpmsim {
@@ -13,10 +14,9 @@ inline constexpr const char* kBundleCategory = "bundle";
 // order its records' columns follow.
 struct BundleFacts {
   std::vector<std::string> members;
-  // The fan: none, a prescribed speed, or speed: controller, when the port "<bundle>.fan_command"
-  // (0 to 1) waits for a controller.
-  enum class Fan { none, prescribed, commanded };
-  Fan fan = Fan::none;
+  // The fan's: with speed: controller (commanded) the port "<bundle>.fan_command" (0 to 1)
+  // waits for a controller.
+  BundleAir::Fan fan = BundleAir::Fan::none;
 };
 
 // Registers the category "bundle" (kind "parallel"): n muscles in parallel between common end

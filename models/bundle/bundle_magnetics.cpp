@@ -22,22 +22,24 @@ double chebyshev_node(int k, int n, double a, double b) {
   return 0.5 * (a + b) + 0.5 * (b - a) * t;
 }
 
-// The barycentric interpolant through values at the first-kind nodes (weights (-1)^k sin).
-double barycentric(const std::vector<double>& values, double a, double b, double x) {
-  const int n = static_cast<int>(values.size());
+// The barycentric weight of first-kind node k of n, (-1)^k sin((k + 1/2) pi / n).
+double barycentric_weight(int k, int n) {
+  return (k % 2 == 0 ? 1.0 : -1.0) * std::sin(std::numbers::pi * (k + 0.5) / n);
+}
+
+}  // namespace
+
+// The barycentric interpolant through the values at the nodes.
+double NeighbourMutual::interpolate(double u) const {
   double numerator = 0.0, denominator = 0.0;
-  for (int k = 0; k < n; ++k) {
-    const double node = chebyshev_node(k, n, a, b);
-    if (x == node) return values[static_cast<std::size_t>(k)];
-    const double weight =
-        (k % 2 == 0 ? 1.0 : -1.0) * std::sin(std::numbers::pi * (k + 0.5) / n) / (x - node);
-    numerator += weight * values[static_cast<std::size_t>(k)];
+  for (std::size_t k = 0; k < values_.size(); ++k) {
+    if (u == nodes_[k]) return values_[k];
+    const double weight = weights_[k] / (u - nodes_[k]);
+    numerator += weight * values_[k];
     denominator += weight;
   }
   return numerator / denominator;
 }
-
-}  // namespace
 
 // The table runs in u = ln(l): M changes fastest at short lengths, where the rings crowd.
 NeighbourMutual::NeighbourMutual(inductance::CoilGeometry at_rest, double separation)
@@ -46,12 +48,15 @@ NeighbourMutual::NeighbourMutual(inductance::CoilGeometry at_rest, double separa
       shortest_(std::log(kShortest * at_rest.length)),
       longest_(std::log(kLongest * at_rest.length)) {
   const auto deflection_at = [&](double u) { return std::exp(u) - at_rest_.length; };
-  for (int k = 0; k < kNodes; ++k)
-    values_.push_back(direct(deflection_at(chebyshev_node(k, kNodes, shortest_, longest_))));
+  for (int k = 0; k < kNodes; ++k) {
+    nodes_.push_back(chebyshev_node(k, kNodes, shortest_, longest_));
+    weights_.push_back(barycentric_weight(k, kNodes));
+    values_.push_back(direct(deflection_at(nodes_.back())));
+  }
   // Between the nodes, where an interpolant is worst.
   for (int k = 0; k + 1 < kNodes; ++k) {
-    const double u = 0.5 * (chebyshev_node(k, kNodes, shortest_, longest_) +
-                            chebyshev_node(k + 1, kNodes, shortest_, longest_));
+    const double u =
+        0.5 * (nodes_[static_cast<std::size_t>(k)] + nodes_[static_cast<std::size_t>(k + 1)]);
     const double exact = direct(deflection_at(u));
     table_error_ =
         std::max(table_error_, std::abs((*this)(deflection_at(u)) - exact) / std::abs(exact));
@@ -91,7 +96,7 @@ double NeighbourMutual::operator()(double deflection) const {
   // muscle's stroke).
   const double length = at_rest_.length + deflection;
   const double u = length > 0.0 ? std::clamp(std::log(length), shortest_, longest_) : shortest_;
-  return barycentric(values_, shortest_, longest_, u);
+  return interpolate(u);
 }
 
 MemberMutual::MemberMutual(std::string group, std::shared_ptr<const NeighbourMutual> mutual,

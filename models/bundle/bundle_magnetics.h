@@ -30,8 +30,9 @@ class NeighbourMutual {
  private:
   inductance::CoilGeometry at_rest_;
   double separation_;
-  double shortest_, longest_;   // the table's ends, ln of the coil length
-  std::vector<double> values_;  // at the Chebyshev nodes
+  double interpolate(double u) const;
+  double shortest_, longest_;                     // the table's ends, ln of the coil length
+  std::vector<double> nodes_, weights_, values_;  // first-kind Chebyshev nodes, in u
   double table_error_ = 0.0;
 };
 

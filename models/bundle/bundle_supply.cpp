@@ -4,7 +4,8 @@ namespace tcpmsim {
 
 namespace {
 using P = BundleSupplyParameters;
-constexpr const char* kSourceUnit[] = {"V", "A", "W"};
+constexpr const char* kSourceUnit[] = {"V", "A", "W"};  // by SupplyMode
+constexpr const char* kSourceKey[] = {"voltage", "current", "power"};
 
 // What is wrong with the source over [0, duration], or "": a power cannot be negative.
 std::string source_problem(SupplyMode mode, const Signal& source, double duration) {
@@ -32,19 +33,13 @@ std::unique_ptr<BundleSupply> BundleSupply::from_config(const std::string& group
   int given = 0;
   SupplyMode mode = SupplyMode::voltage;
   for (const auto candidate : {SupplyMode::voltage, SupplyMode::current, SupplyMode::power}) {
-    const char* key = candidate == SupplyMode::voltage   ? "voltage"
-                      : candidate == SupplyMode::current ? "current"
-                                                         : "power";
-    if (node.has(key)) {
+    if (node.has(kSourceKey[static_cast<int>(candidate)])) {
       mode = candidate;
       ++given;
     }
   }
   if (given != 1) node.fail("expected exactly one of voltage, current or power (the supply's)");
-  const char* key = mode == SupplyMode::voltage   ? "voltage"
-                    : mode == SupplyMode::current ? "current"
-                                                  : "power";
-  const ConfigNode source_node = node.at(key);
+  const ConfigNode source_node = node.at(kSourceKey[static_cast<int>(mode)]);
   auto source = read_signal(source_node, kSourceUnit[static_cast<int>(mode)], signals);
   if (const std::string problem = source_problem(mode, *source, signals.duration); !problem.empty())
     source_node.fail(problem);
@@ -82,7 +77,8 @@ std::vector<SignalDeclaration> BundleSupply::signals() const {
 
 std::string BundleSupply::check_parameters(const RunSetup& setup) const {
   const std::string problem = source_problem(mode_, signal(setup.context, 0), duration_);
-  return problem.empty() ? problem : "power: " + problem;
+  return problem.empty() ? problem
+                         : std::string(kSourceKey[static_cast<int>(mode_)]) + ": " + problem;
 }
 
 void BundleSupply::initialize(const Evaluation&, std::span<double> own_state) const {
@@ -92,17 +88,11 @@ void BundleSupply::initialize(const Evaluation&, std::span<double> own_state) co
 OperatingPoint BundleSupply::operating_point(const Evaluation& evaluation) const {
   double sum = 0.0;
   for (int k = 0; k < source_count(kResistances); ++k) {
-    const double resistance = input(evaluation, kResistances, k);
-    sum += wiring_ == BundleWiring::series ? resistance : 1.0 / resistance;
+    sum += bundle_circuit::resistance_term(wiring_, input(evaluation, kResistances, k));
   }
   return bundle_circuit::operating_point(mode_, signal(evaluation, 0).value(evaluation.signal_time),
                                          run_parameters(evaluation).series_resistance,
                                          bundle_circuit::resistance(wiring_, sum));
-}
-
-double BundleSupply::source_power(const Evaluation& evaluation, const OperatingPoint& point) const {
-  return point.voltage * point.current +
-         run_parameters(evaluation).series_resistance * point.current * point.current;
 }
 
 void BundleSupply::compute_outputs(const Evaluation& evaluation) const {
@@ -110,7 +100,8 @@ void BundleSupply::compute_outputs(const Evaluation& evaluation) const {
   set_output(evaluation, kVoltage, point.voltage);
   set_output(evaluation, kCurrent, point.current);
   set_output(evaluation, kPower, point.voltage * point.current);
-  set_output(evaluation, kSourcePower, source_power(evaluation, point));
+  set_output(evaluation, kSourcePower,
+             bundle_circuit::source_power(point, run_parameters(evaluation).series_resistance));
   if (energy_accounting_) {
     set_output(evaluation, kEnergy, state(evaluation, 0));
     set_output(evaluation, kSeriesHeat, state(evaluation, 1));
@@ -120,7 +111,8 @@ void BundleSupply::compute_outputs(const Evaluation& evaluation) const {
 void BundleSupply::compute_derivatives(const Evaluation& evaluation, double* derivatives) const {
   if (!energy_accounting_) return;
   const OperatingPoint point = operating_point(evaluation);
-  set_derivative(derivatives, 0, source_power(evaluation, point));
+  set_derivative(derivatives, 0,
+                 bundle_circuit::source_power(point, run_parameters(evaluation).series_resistance));
   set_derivative(derivatives, 1,
                  run_parameters(evaluation).series_resistance * point.current * point.current);
 }

@@ -44,8 +44,6 @@ class BundleSupply final : public ParametricComponent<BundleSupplyParameters> {
 
  private:
   OperatingPoint operating_point(const Evaluation& evaluation) const;
-  // What the source gives: U I in voltage mode, the bundle's power plus R_s I^2 otherwise.
-  double source_power(const Evaluation& evaluation, const OperatingPoint& point) const;
 
   BundleWiring wiring_;
   SupplyMode mode_;

@@ -1,5 +1,8 @@
 #include "models/laws/impedance.h"
 
+#include <cmath>
+#include <limits>
+
 namespace tcpmsim {
 
 double InductanceLaw::operator()(double deflection, double temperature) const {
@@ -10,6 +13,23 @@ double InductanceLaw::operator()(double deflection, double temperature) const {
 double InductanceLaw::deflection(double inductance, double temperature) const {
   const double shifted = inductance - lambda_0 - lambda_T * (temperature - reference_temperature);
   return (lambda_l - lambda_x * shifted) / shifted;  // (7.4)
+}
+
+double InductanceLaw::coupled_deflection(double inductance, double temperature,
+                                         const std::function<double(double)>& coupling) const {
+  constexpr int kMostIterations = 50;
+  constexpr double kAgreement = 1e-15;  // [m]
+  constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
+  const double floor = lambda_T * (temperature - reference_temperature);
+  double deflection = this->deflection(inductance, temperature);
+  for (int k = 0; k < kMostIterations; ++k) {
+    const double own = inductance - coupling(deflection);
+    if (!(own - lambda_0 - floor > 0.0)) return kUnknown;
+    const double next = this->deflection(own, temperature);
+    if (std::abs(next - deflection) <= kAgreement) return next;
+    deflection = next;
+  }
+  return kUnknown;
 }
 
 double ResistanceLaw::operator()(double deflection, double temperature) const {

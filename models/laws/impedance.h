@@ -1,5 +1,7 @@
 #pragma once
 
+#include <functional>
+
 // The heater coil's impedance laws (thesis ch. 6-7): small value types with no dependence on
 // components or configuration. The plant's CoilImpedance, the estimator's inversion (7.4) and
 // the static self-sensing of (6.6)-(6.8) use them.
@@ -21,6 +23,12 @@ struct InductanceLaw {
   double operator()(double deflection, double temperature) const;
   // Inverse at a known temperature; at lambda_T = 0 this is (7.4).
   double deflection(double inductance, double temperature) const;
+  // The inverse of law(x, T) + coupling(x), a neighbour's mutual inductance on top of the coil's
+  // own: by fixed-point iteration from the uncoupled inverse (the coupling changes with x far
+  // less than the law). NaN where inductance - coupling leaves the inverse's domain (at or
+  // below lambda_0 + lambda_T (T - T_ref)) or no fixed point is found.
+  double coupled_deflection(double inductance, double temperature,
+                            const std::function<double(double)>& coupling) const;
 };
 
 // Heater resistance (6.5):  R(x, T) = rho_x x + rho_T (T - T_ref) + rho_0.

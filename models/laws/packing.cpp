@@ -52,6 +52,7 @@ BundleCrossSection cross_section(PackingLayout layout, int count, double pitch) 
   });
   BundleCrossSection section;
   section.layout = layout;
+  section.pitch = pitch;
   for (int k = 0; k < count; ++k) {
     const auto& centre = points[static_cast<std::size_t>(k)].centre;
     section.centres.push_back({centre[0] * pitch, centre[1] * pitch});

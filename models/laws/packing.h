@@ -14,6 +14,7 @@ enum class PackingLayout { hexagonal, square };
 // and which of them touch (centres one pitch apart).
 struct BundleCrossSection {
   PackingLayout layout = PackingLayout::hexagonal;
+  double pitch = 0.0;                          // [m] between touching centres
   std::vector<std::array<double, 2>> centres;  // [m], the centre of the bundle at 0
   std::vector<std::vector<int>> neighbours;    // per muscle, the touching ones, ascending
   int coordination() const;                    // neighbours of an inner muscle: 6 or 4

@@ -18,22 +18,31 @@ void create_parent_directories(const std::string& path) {
   if (error) throw std::runtime_error("cannot write " + path + ": " + error.message());
 }
 
-void write_text_attribute(H5::H5Object& object, const std::string& name, const std::string& value) {
+H5::StrType utf8_text_type() {
   H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
   type.setCset(H5T_CSET_UTF8);
+  return type;
+}
+
+std::vector<const char*> c_strings(const std::vector<std::string>& values) {
+  std::vector<const char*> pointers;
+  pointers.reserve(values.size());
+  for (const auto& value : values) pointers.push_back(value.c_str());
+  return pointers;
+}
+
+void write_text_attribute(H5::H5Object& object, const std::string& name, const std::string& value) {
+  const H5::StrType type = utf8_text_type();
   H5::Attribute attribute = object.createAttribute(name, type, H5::DataSpace(H5S_SCALAR));
   attribute.write(type, value);
 }
 
 void write_text_array_attribute(H5::H5Object& object, const std::string& name,
                                 const std::vector<std::string>& values) {
-  H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
-  type.setCset(H5T_CSET_UTF8);
+  const H5::StrType type = utf8_text_type();
   const hsize_t size = values.size();
   H5::Attribute attribute = object.createAttribute(name, type, H5::DataSpace(1, &size));
-  std::vector<const char*> pointers;
-  for (const auto& value : values) pointers.push_back(value.c_str());
-  attribute.write(type, pointers.data());
+  attribute.write(type, c_strings(values).data());
 }
 
 }  // namespace tcpmsim

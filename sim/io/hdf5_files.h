@@ -15,6 +15,11 @@ std::string partial_path(const std::string& path);
 // Creates the directories above `path`; a failure is a std::runtime_error naming `path`.
 void create_parent_directories(const std::string& path);
 
+// Variable-length UTF-8 text, the type of every string the records and reports write.
+H5::StrType utf8_text_type();
+// Pointers to `values`' characters, for writing them as variable-length texts.
+std::vector<const char*> c_strings(const std::vector<std::string>& values);
+
 // A scalar UTF-8 text attribute.
 void write_text_attribute(H5::H5Object& object, const std::string& name, const std::string& value);
 // A 1-D array of UTF-8 texts as an attribute (a bundle's member names).

@@ -102,13 +102,10 @@ void Hdf5Writer::write_scalar(const std::string& dataset, double value, const st
 void Hdf5Writer::write_strings(const std::string& dataset, const std::vector<std::string>& values) {
   guarded(path_, [&] {
     H5::Group group = parent_group(file_->file, dataset);
-    H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
-    type.setCset(H5T_CSET_UTF8);
+    const H5::StrType type = utf8_text_type();
     const hsize_t size = values.size();
     H5::DataSet set = group.createDataSet(leaf(dataset), type, H5::DataSpace(1, &size));
-    std::vector<const char*> pointers;
-    for (const auto& value : values) pointers.push_back(value.c_str());
-    if (!pointers.empty()) set.write(pointers.data(), type);
+    if (!values.empty()) set.write(c_strings(values).data(), type);
   });
 }
 
