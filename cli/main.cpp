@@ -14,6 +14,7 @@
 #include "sim/config/config_error.h"
 #include "sim/kind_listing.h"
 #include "sim/run.h"
+#include "sweep/sweep_executor.h"
 #include "tcpmsim/version.h"
 
 namespace {
@@ -37,6 +38,7 @@ struct Options {
   tcpmsim::analysis::CoilFitOptions coil_fit;
   tcpmsim::SpringForcesOptions spring_forces;
   tcpmsim::ControlTasksOptions control_tasks;
+  tcpmsim::sweep::SweepOptions sweep;
 };
 
 tcpmsim::Scenario load(const Options& options) {
@@ -130,6 +132,29 @@ int spring_forces(const Options& options) {
 int control_tasks(const Options& options) {
   tcpmsim::run_control_tasks_command(options.control_tasks, std::cout,
                                      std::make_shared<tcpmsim::UnitSystem>());
+  return kSuccess;
+}
+
+// A parameter study: the runs of a sweep file on threads, one HDF5 summary (sweep/).
+int sweep(const Options& options) {
+  auto units = std::make_shared<tcpmsim::UnitSystem>();
+  const tcpmsim::sweep::SweepSpec spec =
+      tcpmsim::sweep::load_sweep(options.config, options.overrides, units);
+  tcpmsim::sweep::SweepOptions settings = options.sweep;
+  if (settings.output.empty()) settings.output = "results/" + spec.name + ".h5";
+  tcpmsim::sweep::SweepOutcome outcome;
+  {
+    tcpmsim::BatchProgress progress(stderr);
+    outcome =
+        tcpmsim::sweep::run_sweep(spec, settings, units, [&](std::size_t done, std::size_t total) {
+          if (!options.quiet) progress.update(done, total);
+        });
+  }
+  if (!options.quiet) {
+    std::cout << "wrote " << outcome.output << ": " << outcome.runs << " runs";
+    if (outcome.resumed > 0) std::cout << " (" << outcome.resumed << " done before the resume)";
+    std::cout << ", " << outcome.failed << " failed\n";
+  }
   return kSuccess;
 }
 
@@ -251,6 +276,23 @@ int main(int argc, char** argv) {
       ->add_option("--threads", options.control_tasks.settings.threads, "Tasks in parallel")
       ->check(CLI::Range(1, 64));
 
+  CLI::App* sweep_command = app.add_subcommand(
+      "sweep", "Run a parameter study from a sweep file: one HDF5 summary, optionally traces");
+  sweep_command->add_option("sweep", options.config, "Sweep file (YAML)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sweep_command
+      ->add_option("--set", options.overrides,
+                   "Override a value of the sweep file, e.g. --set store.traces=full")
+      ->type_name("KEY.PATH=VALUE");
+  sweep_command->add_option("-o,--output", options.sweep.output,
+                            "Output file (default: results/<sweep name>.h5)");
+  sweep_command->add_option("-j,--jobs", options.sweep.threads, "Runs in parallel (threads)")
+      ->check(CLI::Range(1, 256));
+  sweep_command->add_flag("--resume", options.sweep.resume,
+                          "Finish an interrupted sweep: redo only the runs not done");
+  sweep_command->add_flag("-q,--quiet", options.quiet, "No progress or summary");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -265,5 +307,6 @@ int main(int argc, char** argv) {
   if (coil_fit_command->parsed()) return guarded(coil_fit, options);
   if (spring_forces_command->parsed()) return guarded(spring_forces, options);
   if (control_tasks_command->parsed()) return guarded(control_tasks, options);
+  if (sweep_command->parsed()) return guarded(sweep, options);
   return guarded(validate, options);
 }

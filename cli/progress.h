@@ -1,6 +1,7 @@
 #pragma once
 
 #include <chrono>
+#include <cstddef>
 #include <cstdio>
 
 namespace tcpmsim {
@@ -17,6 +18,26 @@ class ProgressLine {
   double end_time_;
   bool active_;
   bool printed_ = false;
+  std::chrono::steady_clock::time_point last_;
+};
+
+// Progress of a batch (a sweep's runs): on a terminal a bar with the runs done and the time
+// left, refreshed in place; in a log (not a terminal) a plain line at every tenth of the runs
+// and at least every 30 s, so that a cluster job's output shows where it is.
+class BatchProgress {
+ public:
+  explicit BatchProgress(std::FILE* stream);
+  ~BatchProgress();
+  void update(std::size_t done, std::size_t total);
+
+ private:
+  std::FILE* stream_;
+  bool terminal_;
+  bool printed_ = false;
+  std::size_t first_done_ = 0;  // done when it started (resumed runs), not counted for the rate
+  bool started_ = false;
+  std::size_t last_done_ = 0;
+  std::chrono::steady_clock::time_point start_;
   std::chrono::steady_clock::time_point last_;
 };
 

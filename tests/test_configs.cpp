@@ -1,23 +1,46 @@
 // Every scenario shipped in configs/ loads and runs to completion.
+#include <yaml-cpp/yaml.h>
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
+#include "sweep/sweep_spec.h"
 #include "tests/support/test_support.h"
 
 using namespace tcpmsim;
 using namespace tcpmsim::testing;
 
-TEST_CASE("Every file in configs/ runs to the end and samples at its output rate") {
-  int count = 0;
+namespace {
+
+// A sweep file (configs/sweeps/*.yaml with a `sweep:` section) names scenarios rather than being
+// one.
+bool is_sweep_file(const std::filesystem::path& path) {
+  return YAML::LoadFile(path.string())["sweep"].IsDefined();
+}
+
+// The scenario files of configs/: not the spring geometries, not the sweep files.
+std::vector<std::filesystem::path> scenario_files() {
+  std::vector<std::filesystem::path> files;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(source_path("configs"))) {
     if (entry.path().extension() != ".yaml") continue;
-    if (entry.path().parent_path().filename() == "springs")
-      continue;  // geometry files, not scenarios
+    if (entry.path().parent_path().filename() == "springs") continue;  // geometry files
+    if (is_sweep_file(entry.path())) continue;
+    files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+}  // namespace
+
+TEST_CASE("Every file in configs/ runs to the end and samples at its output rate") {
+  int count = 0;
+  for (const auto& file : scenario_files()) {
     ++count;
-    INFO(entry.path().filename().string());
-    Scenario scenario = load_scenario(entry.path().string(), {}, shared_units());
+    INFO(file.filename().string());
+    Scenario scenario = load_scenario(file.string(), {}, shared_units());
     const Trace trace = simulate(scenario);
     const auto expected = static_cast<std::size_t>(std::floor(
                               (scenario.settings.duration - scenario.settings.output_start) /
@@ -45,15 +68,26 @@ TEST_CASE("Every file in configs/ runs to the end and samples at its output rate
 }
 
 TEST_CASE("In every scenario each component writes exactly its own outputs and derivatives") {
-  for (const auto& entry : std::filesystem::recursive_directory_iterator(source_path("configs"))) {
-    if (entry.path().extension() != ".yaml") continue;
-    if (entry.path().parent_path().filename() == "springs") continue;
-    INFO(entry.path().filename().string());
-    Scenario scenario = load_scenario(entry.path().string(), {}, shared_units());
+  for (const auto& file : scenario_files()) {
+    INFO(file.filename().string());
+    Scenario scenario = load_scenario(file.string(), {}, shared_units());
     Context context = scenario.make_context();
     double* state = context.state().data();
     scenario.system->initialize(context, 0.0, state);
     scenario.system->at_breakpoint(context, 0.0, 0.0, state);
     CHECK(scenario.system->check_component_contracts(context, 0.0, state) == "");
   }
+}
+
+TEST_CASE("Every sweep file in configs/ loads with its scenarios, axes and metrics") {
+  int count = 0;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(source_path("configs"))) {
+    if (entry.path().extension() != ".yaml" || !is_sweep_file(entry.path())) continue;
+    INFO(entry.path().filename().string());
+    const auto spec = sweep::load_sweep(entry.path().string(), {}, shared_units());
+    CHECK(!spec.runs.empty());
+    CHECK(!spec.metrics.empty());
+    ++count;
+  }
+  CHECK(count >= 1);
 }

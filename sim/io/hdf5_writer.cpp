@@ -109,6 +109,16 @@ void Hdf5Writer::write_strings(const std::string& dataset, const std::vector<std
   });
 }
 
+void Hdf5Writer::write_integers(const std::string& dataset, std::span<const long long> values) {
+  guarded(path_, [&] {
+    H5::Group group = parent_group(file_->file, dataset);
+    const hsize_t size = values.size();
+    H5::DataSet set =
+        group.createDataSet(leaf(dataset), H5::PredType::NATIVE_LLONG, H5::DataSpace(1, &size));
+    if (!values.empty()) set.write(values.data(), H5::PredType::NATIVE_LLONG);
+  });
+}
+
 void Hdf5Writer::attribute(const std::string& object, const std::string& name,
                            const std::string& value) {
   guarded(path_, [&] {

@@ -25,6 +25,8 @@ class Hdf5Writer {
                     std::size_t columns, const std::string& units);
   void write_scalar(const std::string& dataset, double value, const std::string& units);
   void write_strings(const std::string& dataset, const std::vector<std::string>& values);
+  // 1-D 64-bit integers (counts, identifiers).
+  void write_integers(const std::string& dataset, std::span<const long long> values);
   // A text attribute on an existing object ("/" for the file).
   void attribute(const std::string& object, const std::string& name, const std::string& value);
 

@@ -28,4 +28,6 @@ check signals 'sim|signals'
 check models 'sim|models'
 check controllers 'sim|models|controllers'
 check kinds 'sim|signals|models|controllers|kinds'
+check analysis 'sim|signals|models|controllers|kinds|analysis|tcpmsim'
+check sweep 'sim|signals|models|controllers|kinds|analysis|sweep|tcpmsim'
 exit $((failures > 0))

@@ -1,0 +1,137 @@
+#include "sweep/sweep_run.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "kinds/standard_kinds.h"
+#include "sim/memory_record.h"
+#include "sim/run.h"
+
+namespace tcpmsim::sweep {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+bool has_parameter(const Scenario& scenario, const std::string& path) {
+  return scenario.system->parameter_index(path).has_value();
+}
+
+// value = factor * prod(multiply) / prod(divide), from the context's values.
+double derived_value(const DerivedParameter& derived, const Context& context) {
+  double value = derived.factor;
+  for (const auto& path : derived.multiply) value *= context.parameter(path);
+  for (const auto& path : derived.divide) value /= context.parameter(path);
+  return value;
+}
+
+RunTrace keep_trace(const SweepSpec& spec, const SweepScenario& entry, const Scenario& scenario,
+                    const MemoryRecord& record) {
+  RunTrace trace;
+  trace.scenario = entry.name;
+  std::size_t stride = 1;
+  if (spec.traces == TraceStorage::decimated)
+    stride = static_cast<std::size_t>(
+        std::llround(spec.trace_interval / scenario.settings.output_interval));
+  for (std::size_t k = 0; k < record.time.size(); k += stride) trace.time.push_back(record.time[k]);
+  for (const auto& channel : scenario.system->channels()) {
+    if (!channel.recorded) continue;
+    const auto& all = record[channel.group + "/" + channel.name];
+    std::vector<double> kept;
+    for (std::size_t k = 0; k < all.size(); k += stride) kept.push_back(all[k]);
+    trace.channels.push_back(channel.group + "/" + channel.name);
+    trace.units.push_back(channel.unit);
+    trace.values.push_back(std::move(kept));
+  }
+  return trace;
+}
+
+void note(RunResult& result, const std::string& text) {
+  result.message += (result.message.empty() ? "" : "; ") + text;
+}
+
+// One scenario of the run; throws on the run's failure.
+void run_scenario_at(const SweepSpec& spec, const SweepScenario& entry, std::size_t id,
+                     ScenarioLoader& loader, RunResult& result) {
+  std::shared_ptr<const Scenario> scenario = entry.scenario;
+  std::vector<std::string> structural;
+  for (std::size_t a = 0; a < spec.axes.size(); ++a) {
+    if (spec.axes[a].structural)
+      structural.push_back(spec.axes[a].path + "=" + spec.axes[a].texts[id]);
+  }
+  if (!structural.empty()) {
+    auto overrides = entry.overrides;
+    overrides.insert(overrides.end(), structural.begin(), structural.end());
+    scenario = loader.load(entry.file, overrides);
+  }
+  Context context = scenario->make_context();
+  for (std::size_t a = 0; a < spec.axes.size(); ++a) {
+    const Axis& axis = spec.axes[a];
+    if (!axis.structural && has_parameter(*scenario, axis.path))
+      context.set_parameter(axis.path, spec.runs[id][a]);
+  }
+  for (std::size_t d = 0; d < spec.derived.size(); ++d) {
+    const DerivedParameter& derived = spec.derived[d];
+    if (!has_parameter(*scenario, derived.path)) continue;
+    const double value = derived_value(derived, context);
+    context.set_parameter(derived.path, value);
+    result.values[spec.axes.size() + d] = value;
+  }
+  MemoryRecord record(*scenario->system);
+  integrate(*scenario, context, record);
+  for (std::size_t m = 0; m < spec.metrics.size(); ++m) {
+    if (spec.metrics[m].scenario != entry.name) continue;
+    // A metric the record cannot give (too short a window for a fit) is missing from this
+    // run's row; the run itself stands.
+    try {
+      const MetricValue value = evaluate_metric(spec.metrics[m], record, context);
+      result.metrics[m] = value.value;
+      if (!value.note.empty()) note(result, spec.metrics[m].name + ": " + value.note);
+    } catch (const std::exception& error) {
+      note(result, spec.metrics[m].name + ": " + error.what());
+    }
+  }
+  if (spec.traces != TraceStorage::none)
+    result.traces.push_back(keep_trace(spec, entry, *scenario, record));
+}
+
+}  // namespace
+
+ScenarioLoader::ScenarioLoader(std::shared_ptr<const UnitSystem> units)
+    : units_(std::move(units)) {}
+
+std::shared_ptr<const Scenario> ScenarioLoader::load(const std::string& file,
+                                                     const std::vector<std::string>& overrides) {
+  const std::lock_guard lock(mutex_);
+  return std::make_shared<const Scenario>(load_scenario(file, overrides, units_));
+}
+
+RunResult execute_run(const SweepSpec& spec, std::size_t id, ScenarioLoader& loader) {
+  const auto started = std::chrono::steady_clock::now();
+  RunResult result;
+  result.id = id;
+  result.values = spec.runs[id];
+  result.values.resize(spec.axes.size() + spec.derived.size(), kNaN);
+  result.metrics.assign(spec.metrics.size(), kNaN);
+  for (const auto& entry : spec.scenarios) {
+    try {
+      run_scenario_at(spec, entry, id, loader, result);
+    } catch (const std::exception& error) {
+      result.succeeded = false;
+      note(result,
+           (spec.scenarios.size() > 1 ? "scenario '" + entry.name + "': " : "") + error.what());
+    }
+  }
+  result.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return result;
+}
+
+std::vector<std::pair<std::string, std::string>> value_columns(const SweepSpec& spec) {
+  std::vector<std::pair<std::string, std::string>> columns;
+  for (const auto& axis : spec.axes)
+    columns.emplace_back(axis.path, axis.structural ? "" : axis.unit);
+  for (const auto& derived : spec.derived) columns.emplace_back(derived.path, derived.unit);
+  return columns;
+}
+
+}  // namespace tcpmsim::sweep

@@ -1,0 +1,369 @@
+#include "sweep/sweep_spec.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include "kinds/standard_kinds.h"
+#include "sim/random_stream.h"
+#include "sweep/sweep_design.h"
+
+namespace tcpmsim::sweep {
+namespace {
+
+// One axis as read: its values, or the indices of its texts for a structural axis.
+struct AxisValues {
+  Axis axis;
+  std::vector<double> values;
+};
+
+std::string number_text(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", value);
+  return buffer;
+}
+
+std::vector<SweepScenario> read_scenarios(const ConfigNode& root, const std::string& file,
+                                          const std::vector<std::string>& overrides,
+                                          const std::shared_ptr<const UnitSystem>& units) {
+  const auto directory = std::filesystem::path(file).parent_path();
+  std::vector<std::pair<std::string, ConfigNode>> named;
+  if (root.has("scenarios")) {
+    if (root.has("scenario")) root.at("scenario").fail("give 'scenario' or 'scenarios', not both");
+    named = root.at("scenarios").entries();
+    if (named.empty()) root.at("scenarios").fail("expected at least one named scenario file");
+  } else {
+    named.emplace_back("scenario", root.at("scenario"));
+  }
+  std::vector<SweepScenario> scenarios;
+  for (const auto& [name, node] : named) {
+    const auto path = (directory / node.as_text()).lexically_normal().string();
+    if (!std::filesystem::is_regular_file(path)) node.fail("no scenario file '" + path + "'");
+    SweepScenario entry{name, path, overrides, nullptr};
+    entry.scenario = std::make_shared<const Scenario>(load_scenario(path, overrides, units));
+    scenarios.push_back(std::move(entry));
+  }
+  return scenarios;
+}
+
+std::vector<std::string> read_set(const ConfigNode& root) {
+  std::vector<std::string> overrides;
+  if (const auto set = root.find("set")) {
+    for (const auto& element : set->elements()) overrides.push_back(element.as_text());
+  }
+  return overrides;
+}
+
+// The declaration of `path` in the scenarios that have it (nullptr in those that do not).
+const ParameterInfo* find_parameter(const SweepScenario& scenario, const std::string& path) {
+  const auto index = scenario.scenario->system->parameter_index(path);
+  if (!index) return nullptr;
+  return &scenario.scenario->system->parameters()[static_cast<std::size_t>(*index)];
+}
+
+// The SI unit of a settable parameter that at least one scenario has; fails at `node` if none
+// has it, if it is derived, or if the scenarios disagree on its unit.
+std::string parameter_unit(const std::vector<SweepScenario>& scenarios, const std::string& path,
+                           const ConfigNode& node) {
+  std::string unit;
+  for (const auto& scenario : scenarios) {
+    const ParameterInfo* parameter = find_parameter(scenario, path);
+    if (parameter == nullptr) continue;
+    if (!parameter->derived_from.empty())
+      node.fail("'" + path + "' is derived (" + parameter->derived_from +
+                "): sweep what it is derived from");
+    if (!unit.empty() && unit != parameter->declaration.unit)
+      node.fail("'" + path + "' has different units in the scenarios");
+    unit = parameter->declaration.unit;
+  }
+  return unit;
+}
+
+bool is_parameter(const std::vector<SweepScenario>& scenarios, const std::string& path) {
+  for (const auto& scenario : scenarios)
+    if (find_parameter(scenario, path) != nullptr) return true;
+  return false;
+}
+
+Spacing read_spacing(const ConfigNode& node) {
+  return node.choice_or("spacing", {"linear", "log"}, "linear") == "log" ? Spacing::logarithmic
+                                                                         : Spacing::linear;
+}
+
+// A range's ends, in `unit` (a plain number for a structural axis), checked for log spacing.
+std::pair<double, double> read_ends(const ConfigNode& node, const std::string& unit,
+                                    Spacing spacing) {
+  const auto read = [&](std::string_view key) {
+    return unit.empty() ? node.number(key) : node.quantity(key, unit);
+  };
+  const double from = read("from");
+  const double to = read("to");
+  if (spacing == Spacing::logarithmic && !(from * to > 0.0))
+    node.at("to").fail("a log range needs ends of one sign, neither zero");
+  return {from, to};
+}
+
+int read_count(const ConfigNode& node) {
+  return static_cast<int>(node.integer("count", ValueCheck::at_least(1)));
+}
+
+std::vector<double> read_axis_values(const ConfigNode& node, const Axis& axis, std::uint64_t seed,
+                                     std::vector<std::string>& texts) {
+  node.declare({"parameter", "values", "range", "latin_hypercube", "random"});
+  const int forms =
+      node.has("values") + node.has("range") + node.has("latin_hypercube") + node.has("random");
+  if (forms != 1)
+    node.fail("expected exactly one of 'values', 'range', 'latin_hypercube' or 'random'");
+  const std::string& unit = axis.unit;
+  RandomStream stream(seed, "sweep axis " + axis.path);
+  std::vector<double> values;
+  if (const auto list = node.find("values")) {
+    const auto elements = list->elements();
+    if (elements.empty()) list->fail("an empty list of values");
+    for (const auto& element : elements) {
+      if (axis.structural) {
+        texts.push_back(element.as_text());
+        values.push_back(std::nan(""));
+      } else {
+        values.push_back(element.as_quantity(unit));
+      }
+    }
+    return values;
+  }
+  if (const auto range = node.find("range")) {
+    const Spacing spacing = read_spacing(*range);
+    const auto [from, to] = read_ends(*range, unit, spacing);
+    values = spaced_values(from, to, read_count(*range), spacing);
+  } else if (const auto lhs = node.find("latin_hypercube")) {
+    const Spacing spacing = read_spacing(*lhs);
+    const auto [from, to] = read_ends(*lhs, unit, spacing);
+    values = latin_hypercube_values(from, to, read_count(*lhs), spacing, stream);
+  } else {
+    const ConfigNode random = node.at("random");
+    const std::string distribution =
+        random.choice("distribution", {"uniform", "log_uniform", "normal"});
+    if (distribution == "normal") {
+      const double mean = unit.empty() ? random.number("mean") : random.quantity("mean", unit);
+      const double deviation =
+          unit.empty() ? random.number("standard_deviation", ValueCheck::non_negative())
+                       : random.quantity("standard_deviation", unit, ValueCheck::non_negative());
+      values = normal_values(mean, deviation, read_count(random), stream);
+    } else {
+      const Spacing spacing =
+          distribution == "log_uniform" ? Spacing::logarithmic : Spacing::linear;
+      const auto [from, to] = read_ends(random, unit, spacing);
+      values = uniform_values(from, to, read_count(random), spacing, stream);
+    }
+  }
+  if (axis.structural) {
+    for (double value : values) texts.push_back(number_text(value));
+  }
+  return values;
+}
+
+// Checks that every scenario takes a structural axis' first value.
+void check_structural(const ConfigNode& node, const Axis& axis,
+                      const std::vector<SweepScenario>& scenarios,
+                      const std::shared_ptr<const UnitSystem>& units) {
+  for (const auto& scenario : scenarios) {
+    auto overrides = scenario.overrides;
+    overrides.push_back(axis.path + "=" + axis.texts.front());
+    try {
+      load_scenario(scenario.file, overrides, units);
+    } catch (const ConfigError& error) {
+      node.fail(
+          "'" + axis.path + "' is not a parameter of scenario '" + scenario.name +
+          "' (tcpmsim validate lists them), and setting it as a key fails: " + error.problem());
+    }
+  }
+}
+
+AxisValues read_axis(const ConfigNode& node, const std::vector<SweepScenario>& scenarios,
+                     std::uint64_t seed, const std::shared_ptr<const UnitSystem>& units) {
+  AxisValues read;
+  Axis& axis = read.axis;
+  const ConfigNode parameter = node.at("parameter");
+  axis.path = parameter.as_text();
+  axis.structural = !is_parameter(scenarios, axis.path);
+  if (!axis.structural) axis.unit = parameter_unit(scenarios, axis.path, parameter);
+  std::vector<std::string> texts;
+  read.values = read_axis_values(node, axis, seed, texts);
+  axis.texts = std::move(texts);
+  if (axis.structural) check_structural(parameter, axis, scenarios, units);
+  return read;
+}
+
+// The axes and their runs: a grid over the entries of `axes` (an axis, or `zip: [axes]`), or
+// every axis zipped.
+void read_axes(const ConfigNode& root, const std::vector<SweepScenario>& scenarios,
+               const std::shared_ptr<const UnitSystem>& units, SweepSpec& spec) {
+  const bool zipped = root.choice_or("combine", {"grid", "zip"}, "grid") == "zip";
+  std::vector<AxisGroup> groups;
+  std::vector<AxisValues> axes;
+  const auto add = [&](const ConfigNode& node, AxisGroup& group) {
+    axes.push_back(read_axis(node, scenarios, spec.seed, units));
+    for (const auto& earlier : axes) {
+      if (&earlier != &axes.back() && earlier.axis.path == axes.back().axis.path)
+        node.at("parameter").fail("'" + earlier.axis.path + "' is swept twice");
+    }
+    std::vector<double> indices(axes.back().values.size());
+    for (std::size_t k = 0; k < indices.size(); ++k) indices[k] = static_cast<double>(k);
+    if (!group.empty() && group.front().size() != indices.size())
+      node.fail("zipped axes must have equal lengths: this one has " +
+                std::to_string(indices.size()) + " values, the first " +
+                std::to_string(group.front().size()));
+    group.push_back(std::move(indices));
+  };
+  if (const auto list = root.find("axes")) {
+    AxisGroup all;
+    for (const auto& entry : list->elements()) {
+      AxisGroup group;
+      if (entry.has("zip")) {
+        entry.declare({"zip"});
+        for (const auto& member : entry.at("zip").elements()) add(member, zipped ? all : group);
+      } else {
+        add(entry, zipped ? all : group);
+      }
+      if (!zipped) groups.push_back(std::move(group));
+    }
+    if (zipped) groups.push_back(std::move(all));
+  }
+  for (auto& indices : grid_runs(groups)) {
+    std::vector<double> run;
+    for (std::size_t a = 0; a < axes.size(); ++a)
+      run.push_back(axes[a].values[static_cast<std::size_t>(indices[a])]);
+    spec.runs.push_back(std::move(run));
+    // A structural axis' texts follow the runs.
+  }
+  std::vector<std::vector<std::string>> texts_by_run(axes.size());
+  for (const auto& indices : grid_runs(groups)) {
+    for (std::size_t a = 0; a < axes.size(); ++a) {
+      if (axes[a].axis.structural)
+        texts_by_run[a].push_back(axes[a].axis.texts[static_cast<std::size_t>(indices[a])]);
+    }
+  }
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    if (axes[a].axis.structural) axes[a].axis.texts = std::move(texts_by_run[a]);
+    spec.axes.push_back(std::move(axes[a].axis));
+  }
+}
+
+std::vector<std::string> read_paths(const ConfigNode& node, std::string_view key,
+                                    const std::vector<SweepScenario>& scenarios,
+                                    std::vector<std::string>& units) {
+  std::vector<std::string> paths;
+  if (const auto list = node.find(key)) {
+    for (const auto& element : list->elements()) {
+      const std::string path = element.as_text();
+      if (!is_parameter(scenarios, path))
+        element.fail("'" + path +
+                     "' is not a parameter of any scenario (tcpmsim validate lists them)");
+      units.push_back(parameter_unit(scenarios, path, element));
+      paths.push_back(path);
+    }
+  }
+  return paths;
+}
+
+// (u1)*(u2)/((u3)*(u4)) as udunits reads it.
+std::string product_unit(const std::vector<std::string>& multiply,
+                         const std::vector<std::string>& divide) {
+  std::string text = "1";
+  for (const auto& unit : multiply) text += "*(" + unit + ")";
+  for (const auto& unit : divide) text += "/(" + unit + ")";
+  return text;
+}
+
+DerivedParameter read_derived(const ConfigNode& node, const std::vector<SweepScenario>& scenarios,
+                              const UnitSystem& units) {
+  DerivedParameter derived;
+  const ConfigNode parameter = node.at("parameter");
+  derived.path = parameter.as_text();
+  if (!is_parameter(scenarios, derived.path))
+    parameter.fail("'" + derived.path +
+                   "' is not a parameter of any scenario (tcpmsim validate lists them)");
+  derived.unit = parameter_unit(scenarios, derived.path, parameter);
+  std::vector<std::string> multiply_units, divide_units;
+  derived.multiply = read_paths(node, "multiply", scenarios, multiply_units);
+  derived.divide = read_paths(node, "divide", scenarios, divide_units);
+  if (derived.multiply.empty() && derived.divide.empty())
+    node.fail("expected 'multiply' or 'divide': the parameters it is derived from");
+  derived.factor = node.number_or("factor", 1.0);
+  const std::string unit = product_unit(multiply_units, divide_units);
+  if (!units.convertible(unit, derived.unit) ||
+      std::abs(units.convert(1.0, unit, derived.unit) - 1.0) > 1e-12)
+    node.fail("the product has the unit " + unit + ", but '" + derived.path + "' is in " +
+              derived.unit);
+  return derived;
+}
+
+void read_store(const ConfigNode& root, SweepSpec& spec) {
+  const auto store = root.find("store");
+  if (!store) return;
+  const std::string traces = store->choice_or("traces", {"none", "decimated", "full"}, "none");
+  spec.traces = traces == "full"        ? TraceStorage::full
+                : traces == "decimated" ? TraceStorage::decimated
+                                        : TraceStorage::none;
+  if (spec.traces != TraceStorage::decimated) {
+    return;
+  }
+  spec.trace_interval = store->quantity("interval", "s", ValueCheck::positive());
+  for (const auto& scenario : spec.scenarios) {
+    const double ratio = spec.trace_interval / scenario.scenario->settings.output_interval;
+    if (std::abs(ratio - std::round(ratio)) > 1e-9 * ratio || std::round(ratio) < 1.0)
+      store->at("interval")
+          .fail("must be a multiple of scenario '" + scenario.name + "''s output interval (" +
+                number_text(scenario.scenario->settings.output_interval) + " s)");
+  }
+}
+
+void read_metrics(const ConfigNode& root, SweepSpec& spec) {
+  const auto list = root.find("metrics");
+  if (!list) return;
+  std::set<std::string> names;
+  for (const auto& node : list->elements()) {
+    const SweepScenario* scenario = &spec.scenarios.front();
+    if (spec.scenarios.size() > 1 || node.has("scenario")) {
+      std::vector<std::string> choices;
+      for (const auto& entry : spec.scenarios) choices.push_back(entry.name);
+      const std::string name = node.choice("scenario", choices);
+      for (const auto& entry : spec.scenarios)
+        if (entry.name == name) scenario = &entry;
+    }
+    MetricSpec metric = read_metric(node, scenario->name, *scenario->scenario);
+    if (metric.name.empty() || metric.name.find('/') != std::string::npos)
+      node.at("name").fail("a metric's name must be non-empty and hold no '/'");
+    if (!names.insert(metric.name).second)
+      node.at("name").fail("a second metric named '" + metric.name + "'");
+    spec.metrics.push_back(std::move(metric));
+  }
+}
+
+}  // namespace
+
+SweepSpec load_sweep(const std::string& file, const std::vector<std::string>& overrides,
+                     std::shared_ptr<const UnitSystem> units) {
+  const ConfigNode root = ConfigNode::load_file(file, overrides, units);
+  root.declare(
+      {"sweep", "scenario", "scenarios", "set", "combine", "axes", "derived", "metrics", "store"});
+  SweepSpec spec;
+  spec.file = file;
+  const ConfigNode header = root.at("sweep");
+  spec.name = header.text("name");
+  spec.seed = static_cast<std::uint64_t>(header.integer_or("seed", 1, ValueCheck::non_negative()));
+  spec.scenarios = read_scenarios(root, file, read_set(root), units);
+  read_axes(root, spec.scenarios, units, spec);
+  if (const auto list = root.find("derived")) {
+    for (const auto& node : list->elements())
+      spec.derived.push_back(read_derived(node, spec.scenarios, *units));
+  }
+  read_metrics(root, spec);
+  read_store(root, spec);
+  root.reject_unknown_keys();
+  spec.resolved_yaml = root.resolved_yaml();
+  return spec;
+}
+
+}  // namespace tcpmsim::sweep

@@ -1,0 +1,212 @@
+#include "sweep/sweep_store.h"
+
+#include <H5Cpp.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "sim/config/config_node.h"
+#include "sim/io/hdf5_files.h"
+#include "sim/io/hdf5_writer.h"
+#include "tcpmsim/version.h"
+
+namespace tcpmsim::sweep {
+namespace {
+
+constexpr const char* kIdentityFile = "sweep.identity";
+
+std::string run_name(std::size_t id, std::size_t runs) {
+  const std::size_t width = std::to_string(runs > 0 ? runs - 1 : 0).size();
+  std::string text = std::to_string(id);
+  return std::string(width - std::min(width, text.size()), '0') + text;
+}
+
+// A run's part, as merge reads it back.
+struct Part {
+  std::vector<double> values;
+  std::vector<double> metrics;
+  bool succeeded = false;
+  std::string message;
+  double wall_seconds = 0.0;
+};
+
+std::vector<double> read_doubles(const H5::H5File& file, const std::string& name) {
+  H5::DataSet set = file.openDataSet(name);
+  const H5::DataSpace space = set.getSpace();
+  std::vector<double> values(static_cast<std::size_t>(space.getSimpleExtentNpoints()));
+  if (!values.empty()) set.read(values.data(), H5::PredType::NATIVE_DOUBLE);
+  return values;
+}
+
+std::string read_text(const H5::H5File& file, const std::string& name) {
+  H5::DataSet set = file.openDataSet(name);
+  std::vector<std::string> values;
+  const H5::StrType type = utf8_text_type();
+  char* text = nullptr;
+  set.read(&text, type);
+  std::string value = text != nullptr ? text : "";
+  H5::DataSet::vlenReclaim(&text, type, H5::DataSpace(H5S_SCALAR));
+  return value;
+}
+
+std::string units_of(const H5::DataSet& set) {
+  if (!set.attrExists("units")) return "";
+  H5::Attribute attribute = set.openAttribute("units");
+  std::string value;
+  attribute.read(attribute.getStrType(), value);
+  return value;
+}
+
+// Every dataset under `group`, with its path relative to `prefix`.
+void copy_traces(const H5::H5File& file, const std::string& group, const std::string& prefix,
+                 Hdf5Writer& writer) {
+  H5::Group node = file.openGroup(group);
+  for (hsize_t k = 0; k < node.getNumObjs(); ++k) {
+    const std::string name = node.getObjnameByIdx(k);
+    const std::string path = group + "/" + name;
+    if (node.getObjTypeByIdx(k) == H5G_GROUP) {
+      copy_traces(file, path, prefix + "/" + name, writer);
+    } else {
+      const H5::DataSet set = file.openDataSet(path);
+      writer.write(prefix + "/" + name, read_doubles(file, path), units_of(set));
+    }
+  }
+}
+
+Part read_part(const std::string& path) {
+  try {
+    const H5::H5File file(path, H5F_ACC_RDONLY);
+    Part part;
+    part.values = read_doubles(file, "/values");
+    part.metrics = read_doubles(file, "/metrics");
+    part.succeeded = read_doubles(file, "/succeeded").at(0) != 0.0;
+    part.message = read_text(file, "/message");
+    part.wall_seconds = read_doubles(file, "/wall_seconds").at(0);
+    return part;
+  } catch (const H5::Exception& error) {
+    throw std::runtime_error("cannot read " + path + ": " + error.getDetailMsg());
+  }
+}
+
+void write_text_file(const std::string& path, const std::string& text) {
+  {
+    std::ofstream out(partial_path(path), std::ios::binary);
+    out << text;
+    if (!out.flush()) throw std::runtime_error("cannot write " + path);
+  }
+  std::filesystem::rename(partial_path(path), path);
+}
+
+}  // namespace
+
+std::string sweep_identity(const SweepSpec& spec) {
+  std::ostringstream text;
+  text << "# sweep " << spec.file << ", " << spec.runs.size() << " runs\n" << spec.resolved_yaml;
+  for (const auto& scenario : spec.scenarios)
+    text << "\n# scenario " << scenario.name << ": " << scenario.file << "\n"
+         << scenario.scenario->resolved_yaml;
+  return text.str();
+}
+
+SweepStore::SweepStore(const SweepSpec& spec, std::string output, bool resume)
+    : spec_(spec), output_(std::move(output)), parts_(output_ + ".parts") {
+  namespace fs = std::filesystem;
+  const std::string identity_file = parts_ + "/" + kIdentityFile;
+  const std::string identity = sweep_identity(spec);
+  if (fs::exists(parts_)) {
+    if (!resume)
+      throw std::runtime_error("the runs of an interrupted sweep are in " + parts_ +
+                               ": --resume to finish it, or remove them to start afresh");
+    if (!fs::exists(identity_file) || read_text_file(identity_file) != identity)
+      throw std::runtime_error(parts_ + " holds runs of another sweep (its file or scenarios " +
+                               "changed): remove them to start afresh");
+    // A run killed while its part was being written left only the temporary file.
+    for (const auto& entry : fs::directory_iterator(parts_)) {
+      if (entry.path().extension() == ".partial") fs::remove(entry.path());
+    }
+    return;
+  }
+  create_parent_directories(identity_file);
+  write_text_file(identity_file, identity);
+}
+
+std::string SweepStore::part_path(std::size_t id) const {
+  return parts_ + "/run_" + run_name(id, spec_.runs.size()) + ".h5";
+}
+
+std::vector<std::size_t> SweepStore::pending() const {
+  std::vector<std::size_t> ids;
+  for (std::size_t id = 0; id < spec_.runs.size(); ++id) {
+    if (!std::filesystem::exists(part_path(id))) ids.push_back(id);
+  }
+  return ids;
+}
+
+void SweepStore::write(const RunResult& result) const {
+  const std::lock_guard lock(io_mutex_);
+  Hdf5Writer part(part_path(result.id));
+  part.write("/values", result.values, "");
+  part.write("/metrics", result.metrics, "");
+  part.write("/succeeded", std::vector<double>{result.succeeded ? 1.0 : 0.0}, "1");
+  part.write_strings("/message", {result.message});
+  part.write("/wall_seconds", std::vector<double>{result.wall_seconds}, "s");
+  for (const auto& trace : result.traces) {
+    const std::string group = "/traces/" + trace.scenario;
+    part.write(group + "/time", trace.time, "s");
+    for (std::size_t c = 0; c < trace.channels.size(); ++c)
+      part.write(group + "/" + trace.channels[c], trace.values[c], trace.units[c]);
+  }
+  part.commit();
+}
+
+std::size_t SweepStore::merge() const {
+  const std::size_t runs = spec_.runs.size();
+  const auto columns = value_columns(spec_);
+  std::vector<std::vector<double>> values(columns.size()), metrics(spec_.metrics.size());
+  std::vector<long long> ids;
+  std::vector<std::string> status, messages;
+  std::vector<double> wall;
+  std::size_t failed = 0;
+  Hdf5Writer output(output_);
+  for (std::size_t id = 0; id < runs; ++id) {
+    const Part part = read_part(part_path(id));
+    ids.push_back(static_cast<long long>(id));
+    for (std::size_t c = 0; c < columns.size(); ++c) values[c].push_back(part.values.at(c));
+    for (std::size_t m = 0; m < metrics.size(); ++m) metrics[m].push_back(part.metrics.at(m));
+    status.push_back(part.succeeded ? "ok" : "failed");
+    failed += part.succeeded ? 0 : 1;
+    messages.push_back(part.message);
+    wall.push_back(part.wall_seconds);
+    if (spec_.traces != TraceStorage::none) {
+      const H5::H5File file(part_path(id), H5F_ACC_RDONLY);
+      copy_traces(file, "/traces", "/runs/" + run_name(id, runs), output);
+    }
+  }
+  output.write_integers("/summary/id", ids);
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    const Axis* axis = c < spec_.axes.size() ? &spec_.axes[c] : nullptr;
+    if (axis != nullptr && axis->structural)
+      output.write_strings("/summary/" + columns[c].first, axis->texts);
+    else
+      output.write("/summary/" + columns[c].first, values[c], columns[c].second);
+  }
+  for (std::size_t m = 0; m < metrics.size(); ++m)
+    output.write("/summary/" + spec_.metrics[m].name, metrics[m], spec_.metrics[m].unit);
+  output.write_strings("/summary/status", status);
+  output.write_strings("/summary/message", messages);
+  output.write("/timing/wall_seconds", wall, "s");
+  output.attribute("/", "tcpmsim_version", kVersion);
+  output.attribute("/", "git_commit", kGitCommit);
+  output.attribute("/", "sweep", spec_.name);
+  output.attribute("/", "sweep_file", spec_.file);
+  output.attribute("/", "sweep_config", spec_.resolved_yaml);
+  output.attribute("/", "runs", std::to_string(runs));
+  output.attribute("/", "failed_runs", std::to_string(failed));
+  output.commit();
+  std::filesystem::remove_all(parts_);
+  return failed;
+}
+
+}  // namespace tcpmsim::sweep

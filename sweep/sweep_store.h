@@ -1,0 +1,52 @@
+#pragma once
+
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "sweep/sweep_run.h"
+#include "sweep/sweep_spec.h"
+
+namespace tcpmsim::sweep {
+
+// Where a sweep's results live while it runs and after: each finished run is written at once to
+// its own file in "<output>.parts/" (under a temporary name, renamed when complete, so a killed
+// process leaves no half-written run that looks complete), beside the sweep's identity (its
+// file and scenarios as read). merge() gathers them, in run order, into the one output file and
+// removes the parts. A resumed sweep finds the runs already done and redoes only the rest; its
+// identity must match, so runs of another sweep are never mixed in.
+//
+// The output file:
+//   /summary/id, /summary/<axis or derived parameter>, /summary/<metric>, /summary/status,
+//   /summary/message   one row per run, flat 1-D datasets with a `units` attribute
+//   /timing/wall_seconds  per run (apart from /summary: it differs from run to run)
+//   /runs/<id>/<scenario>/time, /runs/<id>/<scenario>/<group>/<name>  traces, if stored
+class SweepStore {
+ public:
+  // Without `resume`, fails if parts of an interrupted sweep are there; with it, fails if they
+  // are of another sweep.
+  SweepStore(const SweepSpec& spec, std::string output, bool resume);
+
+  const std::string& output() const { return output_; }
+  // The ids of the runs not yet done, in order.
+  std::vector<std::size_t> pending() const;
+  // Safe to call from several threads at once: each run has its own file, and the writes are
+  // serialised (HDF5's C++ layer keeps process-wide state).
+  void write(const RunResult& result) const;
+  // Writes the output file from the parts (all runs must be done) and removes them. Returns the
+  // number of failed runs.
+  std::size_t merge() const;
+
+ private:
+  std::string part_path(std::size_t id) const;
+
+  const SweepSpec& spec_;
+  std::string output_;
+  std::string parts_;
+  mutable std::mutex io_mutex_;
+};
+
+// The text that identifies a sweep: its file and every scenario as read.
+std::string sweep_identity(const SweepSpec& spec);
+
+}  // namespace tcpmsim::sweep

@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# A sweep killed with SIGKILL midway and resumed gives the same file as one never interrupted
+# (issue 11). Also: without --resume an interrupted sweep is not overwritten, and no output file
+# exists until the sweep is complete.
+# Usage: test_sweep_resume.sh TCPMSIM_BINARY SOURCE_DIR [LAUNCHER...]
+#   LAUNCHER: e.g. "mpirun -n 2" (then the sweep runs under it instead of on two threads)
+set -uo pipefail
+tcpmsim=$1
+source_dir=$2
+shift 2
+launcher=("$@")
+jobs=(--jobs 2)
+((${#launcher[@]} > 0)) && jobs=()
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+sweep="$source_dir/tests/sweep/resume_sweep.yaml"
+python=/usr/bin/python3
+fail() { echo "FAIL: $*"; exit 1; }
+
+"${launcher[@]}" "$tcpmsim" sweep "$sweep" "${jobs[@]}" -q -o "$work/whole.h5" || fail "the uninterrupted sweep"
+
+setsid "${launcher[@]}" "$tcpmsim" sweep "$sweep" "${jobs[@]}" -q -o "$work/killed.h5" &
+pid=$!
+for _ in $(seq 1 3000); do  # until a few runs are stored (at most 30 s)
+  count=$(find "$work/killed.h5.parts" -name 'run_*.h5' 2>/dev/null | wc -l)
+  ((count >= 4)) && break
+  sleep 0.01
+done
+kill -KILL -- "-$pid" 2>/dev/null
+wait "$pid" 2>/dev/null
+[[ -e $work/killed.h5 ]] && fail "the sweep finished before it was killed (make it longer)"
+done_runs=$(find "$work/killed.h5.parts" -name 'run_*.h5' | wc -l)
+echo "ok: killed with $done_runs of 24 runs stored, no output file"
+
+"$tcpmsim" sweep "$sweep" -q -o "$work/killed.h5" 2>"$work/err" && fail "a second start without --resume overwrote the parts"
+grep -q -- "--resume" "$work/err" || fail "the refusal does not mention --resume: $(cat "$work/err")"
+echo "ok: without --resume the interrupted sweep is refused"
+
+"${launcher[@]}" "$tcpmsim" sweep "$sweep" "${jobs[@]}" --resume -o "$work/killed.h5" >"$work/out" 2>"$work/err" || fail "the resume"
+grep -q "done before the resume" "$work/out" || fail "the resume did not reuse the stored runs: $(cat "$work/out")"
+[[ -e $work/killed.h5.parts ]] && fail "the parts were not removed after the merge"
+$python "$source_dir/tools/compare_sweeps.py" "$work/whole.h5" "$work/killed.h5" || fail "the resumed sweep differs"
+echo "ok: the resumed sweep equals the uninterrupted one"

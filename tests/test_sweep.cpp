@@ -1,0 +1,265 @@
+// Parameter sweeps (issue 11): the design of the runs, the located errors of a sweep file, one
+// model with a context per run on any number of threads, failures recorded, resumption.
+#include <catch2/catch.hpp>
+
+#include <H5Cpp.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "sim/config/config_error.h"
+#include "sim/io/hdf5_files.h"
+#include "sweep/sweep_design.h"
+#include "sweep/sweep_executor.h"
+#include "sweep/sweep_run.h"
+#include "sweep/sweep_spec.h"
+#include "sweep/sweep_store.h"
+#include "tests/support/test_support.h"
+
+using namespace tcpmsim;
+using namespace tcpmsim::sweep;
+using namespace tcpmsim::testing;
+
+namespace {
+
+// A scratch directory holding sweep files that name the repository's scenarios.
+struct SweepDirectory {
+  std::filesystem::path path;
+  SweepDirectory() {
+    path = std::filesystem::temp_directory_path() /
+           ("tcpmsim_sweep_" + std::to_string(reinterpret_cast<std::uintptr_t>(this)));
+    std::filesystem::create_directories(path);
+  }
+  ~SweepDirectory() { std::filesystem::remove_all(path); }
+  std::string write(const std::string& name, const std::string& text) const {
+    const auto file = (path / name).string();
+    std::ofstream(file) << text;
+    return file;
+  }
+};
+
+const std::string kStepScenario =
+    "scenario: " + source_path("configs/sweeps/thermal_step.yaml") + "\n";
+
+std::string sweep_error(const std::string& text) {
+  SweepDirectory directory;
+  const std::string file = directory.write("sweep.yaml", text);
+  try {
+    load_sweep(file, {}, shared_units());
+  } catch (const ConfigError& error) {
+    return error.what();
+  }
+  return "";
+}
+
+std::vector<double> read_column(const std::string& file, const std::string& name) {
+  const H5::H5File h5(file, H5F_ACC_RDONLY);
+  H5::DataSet set = h5.openDataSet("/summary/" + name);
+  std::vector<double> values(static_cast<std::size_t>(set.getSpace().getSimpleExtentNpoints()));
+  set.read(values.data(), H5::PredType::NATIVE_DOUBLE);
+  return values;
+}
+
+std::vector<std::string> read_texts(const std::string& file, const std::string& name) {
+  const H5::H5File h5(file, H5F_ACC_RDONLY);
+  H5::DataSet set = h5.openDataSet("/summary/" + name);
+  std::vector<char*> texts(static_cast<std::size_t>(set.getSpace().getSimpleExtentNpoints()));
+  const H5::StrType type = utf8_text_type();
+  set.read(texts.data(), type);
+  std::vector<std::string> values(texts.begin(), texts.end());
+  H5::DataSet::vlenReclaim(texts.data(), type, set.getSpace());
+  return values;
+}
+
+// The step scenario over hA x C: 2 x 2 runs.
+const std::string kGridSweep = "sweep: {name: grid}\n" + kStepScenario + R"(
+axes:
+  - parameter: muscle.thermal.conductance
+    values: [40 mW/K, 80 mW/K]
+  - parameter: muscle.thermal.heat_capacity
+    range: {from: 0.3 J/K, to: 0.6 J/K, count: 2, spacing: log}
+metrics:
+  - {name: time_constant, type: time_constant, channel: muscle/temperature, from: 10 s}
+  - {name: peak_temperature, type: maximum, channel: muscle/temperature}
+  - {name: rise_time, type: rise_time, channel: muscle/temperature, from: 10 s}
+  - {name: heat, type: integral, channel: drive/power, rule: held}
+)";
+
+}  // namespace
+
+TEST_CASE("ranges include both ends exactly and space their values linearly or by ratio",
+          "[sweep]") {
+  CHECK(spaced_values(1.0, 3.0, 3, Spacing::linear) == std::vector<double>{1.0, 2.0, 3.0});
+  const auto log = spaced_values(0.1, 10.0, 3, Spacing::logarithmic);
+  CHECK(log.front() == 0.1);
+  CHECK(log.back() == 10.0);
+  CHECK(log[1] == Approx(1.0).epsilon(1e-15));
+  CHECK(spaced_values(2.0, 5.0, 1, Spacing::linear) == std::vector<double>{2.0});
+}
+
+TEST_CASE("a Latin hypercube column puts exactly one value in each stratum, reproducibly",
+          "[sweep]") {
+  RandomStream stream(7, "axis"), again(7, "axis");
+  const auto values = latin_hypercube_values(0.0, 10.0, 10, Spacing::linear, stream);
+  std::set<int> strata;
+  for (double value : values) strata.insert(static_cast<int>(std::floor(value)));
+  CHECK(strata.size() == 10);
+  CHECK(latin_hypercube_values(0.0, 10.0, 10, Spacing::linear, again) == values);
+  // In log space: one value per decade of [1, 1e4].
+  RandomStream decades(1, "log");
+  std::set<int> exponents;
+  for (double value : latin_hypercube_values(1.0, 1e4, 4, Spacing::logarithmic, decades))
+    exponents.insert(static_cast<int>(std::floor(std::log10(value))));
+  CHECK(exponents == std::set<int>{0, 1, 2, 3});
+}
+
+TEST_CASE("a grid takes every combination, the last axis fastest; zipped axes move together",
+          "[sweep]") {
+  const auto runs = grid_runs({{{1, 2}}, {{10, 20, 30}, {100, 200, 300}}});
+  REQUIRE(runs.size() == 6);
+  CHECK(runs[0] == std::vector<double>{1, 10, 100});
+  CHECK(runs[1] == std::vector<double>{1, 20, 200});
+  CHECK(runs[5] == std::vector<double>{2, 30, 300});
+  CHECK_THROWS_AS(grid_runs({{{1, 2}, {1, 2, 3}}}), std::invalid_argument);
+  CHECK(grid_runs({}).size() == 1);  // no axis: the scenario as it is
+}
+
+TEST_CASE("a sweep file's axes, derived parameters and metrics are read with units", "[sweep]") {
+  SweepDirectory directory;
+  const auto spec = load_sweep(directory.write("grid.yaml", kGridSweep), {}, shared_units());
+  REQUIRE(spec.runs.size() == 4);
+  CHECK(spec.axes[0].unit == "W/K");
+  CHECK(spec.runs[1] == std::vector<double>{0.04, 0.6});
+  CHECK(spec.runs[2][0] == 0.08);
+  REQUIRE(spec.metrics.size() == 4);
+  CHECK(spec.metrics[0].unit == "s");
+  CHECK(spec.metrics[1].unit == "K");
+  CHECK(spec.metrics[3].unit == "W*s");
+}
+
+TEST_CASE("a bad sweep file gets one located error before any run", "[sweep]") {
+  const std::string head = "sweep: {name: bad}\n" + kStepScenario;
+  const auto axis = [&](const std::string& text) { return head + "axes:\n  - " + text + "\n"; };
+  CHECK_THAT(sweep_error(axis("{parameter: muscle.thermal.conductanse, values: [1 W/K]}")),
+             Catch::Contains("sweep.yaml:4:17") &&
+                 Catch::Contains("'muscle.thermal.conductanse' is not a parameter of scenario"));
+  CHECK_THAT(sweep_error(axis("{parameter: muscle.thermal.conductance, values: [1 J/K]}")),
+             Catch::Contains("sweep.yaml:4:") && Catch::Contains("axes[0].values[0]") &&
+                 Catch::Contains("cannot be converted to 'W/K'"));
+  CHECK_THAT(sweep_error(axis("{parameter: muscle.thermal.conductance, values: []}")),
+             Catch::Contains("an empty list of values"));
+  CHECK_THAT(
+      sweep_error(axis("{parameter: muscle.thermal.conductance, range: {from: 1 W/K, to: 2 W/K, "
+                       "count: 0}}")),
+      Catch::Contains("axes[0].range.count") && Catch::Contains("at least 1"));
+  CHECK_THAT(sweep_error(axis("{parameter: muscle.thermal.conductance, range: {from: 0 W/K, "
+                              "to: 2 W/K, count: 3, spacing: log}}")),
+             Catch::Contains("a log range needs ends of one sign"));
+  CHECK_THAT(
+      sweep_error(head + "combine: zip\naxes:\n"
+                         "  - {parameter: muscle.thermal.conductance, values: [1 W/K, 2 W/K]}\n"
+                         "  - {parameter: muscle.thermal.heat_capacity, values: [1 J/K]}\n"),
+      Catch::Contains("zipped axes must have equal lengths"));
+  CHECK_THAT(
+      sweep_error(head + "metrics:\n  - {name: t, type: maximum, channel: muscle/temprature}\n"),
+      Catch::Contains("records no output 'muscle/temprature'") &&
+          Catch::Contains("did you mean 'muscle/temperature'"));
+  CHECK_THAT(sweep_error(head + "derived:\n  - {parameter: muscle.thermal.conductance, "
+                                "multiply: [muscle.thermal.heat_capacity]}\n"),
+             Catch::Contains("the product has the unit"));
+  CHECK_THAT(sweep_error("sweep: {name: bad}\nscenario: nowhere.yaml\n"),
+             Catch::Contains("no scenario file"));
+}
+
+TEST_CASE("a structural axis builds the scenario again for each of its values", "[sweep]") {
+  SweepDirectory directory;
+  const std::string text =
+      "sweep: {name: seeds}\n" + kStepScenario +
+      "axes:\n  - {parameter: scenario.duration, values: [50 s, 60 s]}\n"
+      "metrics:\n  - {name: last, type: final_value, channel: muscle/temperature}\n";
+  const auto spec = load_sweep(directory.write("seeds.yaml", text), {}, shared_units());
+  REQUIRE(spec.axes[0].structural);
+  CHECK(spec.axes[0].texts == std::vector<std::string>{"50 s", "60 s"});
+  const std::string output = (directory.path / "seeds.h5").string();
+  run_sweep(spec, {output, 2, false}, shared_units());
+  CHECK(read_texts(output, "scenario.duration") == std::vector<std::string>{"50 s", "60 s"});
+  const auto last = read_column(output, "last");
+  CHECK(last[1] > last[0]);  // heated 10 s longer
+}
+
+TEST_CASE("a sweep's results do not depend on the thread count, and obey C dT/dt = P - hA dT",
+          "[sweep][thread]") {
+  SweepDirectory directory;
+  const auto spec = load_sweep(directory.write("grid.yaml", kGridSweep), {}, shared_units());
+  const std::string one = (directory.path / "one.h5").string();
+  const std::string two = (directory.path / "two.h5").string();
+  run_sweep(spec, {one, 1, false}, shared_units());
+  const auto outcome = run_sweep(spec, {two, 2, false}, shared_units());
+  CHECK(outcome.failed == 0);
+  for (const std::string column : {"muscle.thermal.conductance", "muscle.thermal.heat_capacity",
+                                   "time_constant", "peak_temperature", "rise_time", "heat"}) {
+    INFO(column);
+    CHECK(bitwise_equal(read_column(one, column), read_column(two, column)));
+  }
+  const auto hA = read_column(two, "muscle.thermal.conductance");
+  const auto C = read_column(two, "muscle.thermal.heat_capacity");
+  const auto tau = read_column(two, "time_constant");
+  const auto rise = read_column(two, "rise_time");
+  const auto peak = read_column(two, "peak_temperature");
+  const auto heat = read_column(two, "heat");
+  for (std::size_t run = 0; run < tau.size(); ++run) {
+    INFO("run " << run);
+    CHECK(tau[run] == Approx(C[run] / hA[run]).epsilon(1e-6));
+    CHECK(rise[run] == Approx(C[run] / hA[run] * std::log(9.0)).epsilon(1e-3));  // tau ln 9
+    CHECK(peak[run] - 296.15 == Approx(0.5 / hA[run]).epsilon(1e-4));  // P / hA, 39 tau after
+    CHECK(heat[run] == Approx(0.5 * 390.0).epsilon(1e-12));            // 0.5 W from 10 s, held
+  }
+}
+
+TEST_CASE("a run that fails is recorded with its message, and the sweep goes on", "[sweep]") {
+  SweepDirectory directory;
+  const std::string text = "sweep: {name: failing}\n" + kStepScenario +
+                           "axes:\n  - {parameter: muscle.thermal.heat_capacity, values: "
+                           "[0.5 J/K, -1 J/K, 0.25 J/K]}\n"
+                           "metrics:\n  - {name: tau, type: time_constant, "
+                           "channel: muscle/temperature, from: 10 s}\n";
+  const auto spec = load_sweep(directory.write("failing.yaml", text), {}, shared_units());
+  const std::string output = (directory.path / "failing.h5").string();
+  const auto outcome = run_sweep(spec, {output, 2, false}, shared_units());
+  CHECK(outcome.failed == 1);
+  CHECK(read_texts(output, "status") == std::vector<std::string>{"ok", "failed", "ok"});
+  const auto messages = read_texts(output, "message");
+  CHECK_THAT(messages[1], Catch::Contains("muscle.thermal.heat_capacity"));
+  const auto tau = read_column(output, "tau");
+  CHECK(std::isnan(tau[1]));
+  CHECK(tau[2] == Approx(0.25 / 0.073).epsilon(1e-6));
+}
+
+TEST_CASE("a resumed sweep redoes only the missing runs and refuses another sweep's parts",
+          "[sweep]") {
+  SweepDirectory directory;
+  const std::string file = directory.write("grid.yaml", kGridSweep);
+  const auto spec = load_sweep(file, {}, shared_units());
+  const std::string whole = (directory.path / "whole.h5").string();
+  const std::string resumed = (directory.path / "resumed.h5").string();
+  run_sweep(spec, {whole, 1, false}, shared_units());
+  {  // an interrupted sweep: two of four runs stored
+    const SweepStore store(spec, resumed, false);
+    ScenarioLoader loader(shared_units());
+    store.write(execute_run(spec, 0, loader));
+    store.write(execute_run(spec, 3, loader));
+    CHECK(store.pending() == std::vector<std::size_t>{1, 2});
+  }
+  CHECK_THROWS_WITH(run_sweep(spec, {resumed, 2, false}, shared_units()),
+                    Catch::Contains("--resume"));
+  const auto changed = load_sweep(file, {"axes[0].values[0]=41 mW/K"}, shared_units());
+  CHECK_THROWS_WITH(run_sweep(changed, {resumed, 2, true}, shared_units()),
+                    Catch::Contains("runs of another sweep"));
+  const auto outcome = run_sweep(spec, {resumed, 2, true}, shared_units());
+  CHECK(outcome.resumed == 2);
+  CHECK(!std::filesystem::exists(resumed + ".parts"));
+  for (const std::string column : {"time_constant", "peak_temperature", "heat"})
+    CHECK(bitwise_equal(read_column(whole, column), read_column(resumed, column)));
+}
