@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <iostream>
 
+#include <unistd.h>
+
 #include "analysis/coil_fit_command.h"
 #include "analysis/control_tasks_command.h"
 #include "analysis/spring_forces_command.h"
@@ -15,6 +17,7 @@
 #include "sim/kind_listing.h"
 #include "sim/run.h"
 #include "sweep/sweep_executor.h"
+#include "sweep/sweep_mpi.h"
 #include "tcpmsim/version.h"
 
 namespace {
@@ -145,12 +148,15 @@ int sweep(const Options& options) {
   tcpmsim::sweep::SweepOutcome outcome;
   {
     tcpmsim::BatchProgress progress(stderr);
-    outcome =
-        tcpmsim::sweep::run_sweep(spec, settings, units, [&](std::size_t done, std::size_t total) {
-          if (!options.quiet) progress.update(done, total);
-        });
+    auto report = [&](std::size_t done, std::size_t total) {
+      if (!options.quiet) progress.update(done, total);
+    };
+    // Started by mpirun (or srun): one rank of the job; rank 0 reports.
+    outcome = tcpmsim::sweep::launched_by_mpi()
+                  ? tcpmsim::sweep::run_sweep_mpi(spec, settings, units, report)
+                  : tcpmsim::sweep::run_sweep(spec, settings, units, report);
   }
-  if (!options.quiet) {
+  if (!options.quiet && tcpmsim::sweep::launched_rank() == 0) {
     std::cout << "wrote " << outcome.output << ": " << outcome.runs << " runs";
     if (outcome.resumed > 0) std::cout << " (" << outcome.resumed << " done before the resume)";
     std::cout << ", " << outcome.failed << " failed\n";
@@ -158,7 +164,21 @@ int sweep(const Options& options) {
   return kSuccess;
 }
 
+int report_errors(int (*command)(const Options&), const Options& options);
+
+// Under an MPI launcher every rank meets the same bad input: rank 0 alone says so.
 int guarded(int (*command)(const Options&), const Options& options) {
+  if (tcpmsim::sweep::launched_rank() == 0) return report_errors(command, options);
+  const int saved = dup(fileno(stderr));
+  std::freopen("/dev/null", "w", stderr);
+  const int code = report_errors(command, options);
+  std::fflush(stderr);
+  dup2(saved, fileno(stderr));
+  close(saved);
+  return code;
+}
+
+int report_errors(int (*command)(const Options&), const Options& options) {
   try {
     return command(options);
   } catch (const tcpmsim::ConfigError& error) {

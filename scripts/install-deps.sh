@@ -12,6 +12,7 @@ packages=(
   libudunits2-dev                          # unit parsing and conversion at the config boundary
   libcli11-dev                             # command line
   catch2                                   # tests (v2)
+  libopenmpi-dev openmpi-bin               # sweeps on clusters: mpirun -n K tcpmsim sweep
   python3 python3-h5py python3-numpy python3-matplotlib python3-scipy  # plots, benchmark
 )
 

@@ -110,9 +110,11 @@ std::string sweep_identity(const SweepSpec& spec) {
   return text.str();
 }
 
-SweepStore::SweepStore(const SweepSpec& spec, std::string output, bool resume)
+SweepStore::SweepStore(const SweepSpec& spec, std::string output, Access access)
     : spec_(spec), output_(std::move(output)), parts_(output_ + ".parts") {
   namespace fs = std::filesystem;
+  if (access == Access::join) return;
+  const bool resume = access == Access::resume;
   const std::string identity_file = parts_ + "/" + kIdentityFile;
   const std::string identity = sweep_identity(spec);
   if (fs::exists(parts_)) {

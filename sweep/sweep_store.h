@@ -23,9 +23,11 @@ namespace tcpmsim::sweep {
 //   /runs/<id>/<scenario>/time, /runs/<id>/<scenario>/<group>/<name>  traces, if stored
 class SweepStore {
  public:
-  // Without `resume`, fails if parts of an interrupted sweep are there; with it, fails if they
-  // are of another sweep.
-  SweepStore(const SweepSpec& spec, std::string output, bool resume);
+  // create: a new sweep (fails if parts of an interrupted sweep are there); resume: finish one
+  // (fails if its parts are of another sweep); join: the store another process (MPI rank 0)
+  // created or resumed.
+  enum class Access { create, resume, join };
+  SweepStore(const SweepSpec& spec, std::string output, Access access);
 
   const std::string& output() const { return output_; }
   // The ids of the runs not yet done, in order.

@@ -246,7 +246,7 @@ TEST_CASE("a resumed sweep redoes only the missing runs and refuses another swee
   const std::string resumed = (directory.path / "resumed.h5").string();
   run_sweep(spec, {whole, 1, false}, shared_units());
   {  // an interrupted sweep: two of four runs stored
-    const SweepStore store(spec, resumed, false);
+    const SweepStore store(spec, resumed, SweepStore::Access::create);
     ScenarioLoader loader(shared_units());
     store.write(execute_run(spec, 0, loader));
     store.write(execute_run(spec, 3, loader));

@@ -1,0 +1,63 @@
+#include "sweep/run_pool.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+namespace tcpmsim::sweep {
+
+void run_slots(const SweepSpec& spec, const SweepStore& store,
+               const std::vector<std::size_t>& pending, int threads, RunDispenser& dispenser,
+               ScenarioLoader& loader, const std::function<void(std::size_t)>& progress) {
+  std::size_t done = 0;
+  int exited = 0;
+  std::atomic<bool> stopped{false};
+  std::exception_ptr failure;  // an I/O error stops this process
+  std::mutex mutex;
+  std::condition_variable changed;
+  const auto work = [&] {
+    for (;;) {
+      const auto slot = stopped ? std::nullopt : dispenser.next();
+      if (!slot) {
+        const std::lock_guard lock(mutex);
+        ++exited;
+        changed.notify_all();
+        return;
+      }
+      try {
+        store.write(execute_run(spec, pending[*slot], loader));
+      } catch (...) {
+        const std::lock_guard lock(mutex);
+        if (!failure) failure = std::current_exception();
+        stopped = true;  // the others finish the run they hold, then stop
+      }
+      const std::lock_guard lock(mutex);
+      ++done;
+      changed.notify_all();
+    }
+  };
+  const int count = std::max(1, std::min<int>(threads, static_cast<int>(pending.size())));
+  std::vector<std::thread> workers;
+  for (int t = 0; t < count && !pending.empty(); ++t) workers.emplace_back(work);
+  {
+    std::unique_lock lock(mutex);
+    for (;;) {
+      const std::size_t finished = done;
+      if (progress) {
+        lock.unlock();
+        progress(finished);
+        lock.lock();
+      }
+      if (exited == static_cast<int>(workers.size())) break;
+      changed.wait_for(lock, std::chrono::milliseconds(200));
+    }
+  }
+  for (auto& worker : workers) worker.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
+}  // namespace tcpmsim::sweep
