@@ -43,3 +43,5 @@ for method in bdf adams; do
 done
 echo "== bundles of 1 to 1000 muscles on their own Muscle Drives, sparse against dense (targets: KLU exponent <= 1.1, 1000 muscles x 100 s < 10 s, linear memory)"
 /usr/bin/python3 bench/bench_bundle_scaling.py "$build_dir" bench/bundle_scaling.yaml
+echo "== sweeps: throughput on 1 and 2 threads and under mpirun -n 2, per-run overhead, record compression (targets: parallel efficiency >= 90 %, overhead < 5 %, record within 2x of integration)"
+/usr/bin/python3 bench/bench_sweep.py "$build_dir"

@@ -7,15 +7,14 @@ namespace tcpmsim {
 MemoryRecord::MemoryRecord(const System& system) {
   for (const auto& channel : system.channels()) {
     if (!channel.recorded) continue;
-    layout_.emplace_back(channel.group + "/" + channel.name, channel.signal_index);
-    channels[channel.group + "/" + channel.name];
+    layout_.emplace_back(&channels[channel.group + "/" + channel.name], channel.signal_index);
   }
 }
 
 void MemoryRecord::record(double t, std::span<const double> signals) {
   time.push_back(t);
-  for (const auto& [name, index] : layout_)
-    channels[name].push_back(signals[static_cast<std::size_t>(index)]);
+  for (const auto& [values, index] : layout_)
+    values->push_back(signals[static_cast<std::size_t>(index)]);
 }
 
 const std::vector<double>& MemoryRecord::operator[](const std::string& channel) const {

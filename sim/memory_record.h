@@ -15,6 +15,12 @@ namespace tcpmsim {
 class MemoryRecord final : public OutputSink {
  public:
   explicit MemoryRecord(const System& system);
+  // Moves keep the channels' storage (a map's nodes move with it); a copy would record into the
+  // original's, so there is none.
+  MemoryRecord(MemoryRecord&&) = default;
+  MemoryRecord& operator=(MemoryRecord&&) = default;
+  MemoryRecord(const MemoryRecord&) = delete;
+  MemoryRecord& operator=(const MemoryRecord&) = delete;
   void record(double time, std::span<const double> signals) override;
 
   std::vector<double> time;
@@ -23,7 +29,7 @@ class MemoryRecord final : public OutputSink {
   const std::vector<double>& operator[](const std::string& channel) const;
 
  private:
-  std::vector<std::pair<std::string, int>> layout_;
+  std::vector<std::pair<std::vector<double>*, int>> layout_;  // each channel's storage, signal
 };
 
 }  // namespace tcpmsim

@@ -53,7 +53,8 @@ RunOutcome run_scenario(const Scenario& scenario, Context& context, const std::s
                           scenario.solver.relative_tolerance,
                           linear_solver_name(scenario.solver.linear_solver),
                           scenario.settings.output_interval,
-                          scenario.settings.duration};
+                          scenario.settings.duration,
+                          scenario.settings.compression_level};
   RunOutcome outcome;
   try {
     Hdf5Recorder recorder(output_path, *scenario.system, context, metadata);

@@ -6,6 +6,22 @@ namespace tcpmsim {
 
 namespace {
 
+// output.compression: none (the default; not written into the resolved scenario, so records
+// made before the key existed keep their bits) or deflate, at compression_level 1-9 (default 1).
+int read_compression(const ConfigNode& output) {
+  if (!output.has("compression")) {
+    if (output.has("compression_level"))
+      output.at("compression_level").fail("give it with 'compression: deflate'");
+    return 0;
+  }
+  if (output.choice("compression", {"none", "deflate"}) == "none") {
+    if (output.has("compression_level"))
+      output.at("compression_level").fail("'compression: none' takes no level");
+    return 0;
+  }
+  return static_cast<int>(output.integer_or("compression_level", 1, ValueCheck::between(1, 9)));
+}
+
 ScenarioSettings read_settings(const ConfigNode& root, const KindRegistry& kinds) {
   ScenarioSettings settings;
   root.declare({"scenario", "output", "solver"});
@@ -25,7 +41,7 @@ ScenarioSettings read_settings(const ConfigNode& root, const KindRegistry& kinds
   settings.seed =
       static_cast<std::uint64_t>(scenario.integer_or("seed", 0, ValueCheck::non_negative()));
   const ConfigNode output = root.at("output");
-  output.declare({"rate", "start"});
+  output.declare({"rate", "start", "compression", "compression_level"});
   const double rate = output.quantity("rate", "Hz", ValueCheck::positive());
   settings.output_interval = 1.0 / rate;
   settings.output_start = output.quantity_or("start", "s", 0.0, ValueCheck::non_negative());
@@ -33,6 +49,7 @@ ScenarioSettings read_settings(const ConfigNode& root, const KindRegistry& kinds
     output.at("start").fail("expected a start before the end of the scenario (" +
                             std::to_string(settings.duration) + " s)");
   }
+  settings.compression_level = read_compression(output);
   return settings;
 }
 

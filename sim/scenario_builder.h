@@ -23,6 +23,9 @@ struct ScenarioSettings {
   std::uint64_t seed = 0;
   double output_interval = 0.0;  // [s]
   double output_start = 0.0;     // [s] first recorded time
+  // The record's deflate level, 0 for none (output.compression): zlib at level 1 costs about
+  // twice the integration of a typical run, so records are uncompressed unless asked.
+  int compression_level = 0;
 };
 
 // An instance a scenario declares: a section of a top-level category, its name and its kind.

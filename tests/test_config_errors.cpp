@@ -56,7 +56,8 @@ TEST_CASE("A misspelt optional key is reported as unknown, with a suggestion") {
 TEST_CASE("An unknown key far from every known one lists the known keys") {
   CHECK(
       error_of(replaced(kValid, "output: {rate: 10 Hz}", "output: {rate: 10 Hz, colour: blue}")) ==
-      "test.yaml:2:23: error: output.colour: unknown key 'colour'; known keys here: rate, start");
+      "test.yaml:2:23: error: output.colour: unknown key 'colour'; known keys here: compression, "
+      "compression_level, rate, start");
 }
 
 TEST_CASE("A missing key names the section that needs it") {

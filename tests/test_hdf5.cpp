@@ -71,10 +71,10 @@ TEST_CASE(
     const H5::DataSet dataset = file.openDataSet("/" + name);
     CHECK(text_attribute(dataset, "units") == channel.unit);
     CHECK(read_series(file, "/" + name) == expected[name]);  // bit for bit
-    // Chunked and compressed.
+    // Chunked (written chunk by chunk), uncompressed unless the scenario asks.
     const H5::DSetCreatPropList properties = dataset.getCreatePlist();
     CHECK(properties.getLayout() == H5D_CHUNKED);
-    CHECK(properties.getNfilters() == 2);  // shuffle + deflate
+    CHECK(properties.getNfilters() == 0);
   }
   CHECK(text_attribute(file.openDataSet("/muscle/force"), "units") == "N");
   CHECK(text_attribute(file.openDataSet("/load/deflection"), "units") == "m");
@@ -115,6 +115,39 @@ TEST_CASE("Records longer than a chunk are written chunk by chunk without loss")
   const Trace expected = simulate(scenario);
   const H5::H5File file(path, H5F_ACC_RDONLY);
   CHECK(read_series(file, "/muscle/temperature") == expected["muscle/temperature"]);
+}
+
+TEST_CASE("Compression is a choice of output: deflate changes the file's size, never its numbers") {
+  const std::string config = source_path("configs/ch7_identification.yaml");
+  const std::vector<std::string> longer{"scenario.duration=200 s", "output.rate=100 Hz"};
+  const auto record = [&](const std::vector<std::string>& extra, const std::string& name) {
+    auto overrides = longer;
+    overrides.insert(overrides.end(), extra.begin(), extra.end());
+    Scenario scenario = load_scenario(config, overrides, shared_units());
+    const std::string path = temporary_path(name);
+    REQUIRE(run_scenario(scenario, path).succeeded);
+    return path;
+  };
+  const std::string plain = record({}, "plain.h5");
+  const std::string deflated = record({"output.compression=deflate"}, "deflated.h5");
+  const std::string harder =
+      record({"output.compression=deflate", "output.compression_level=9"}, "harder.h5");
+  const H5::H5File plain_file(plain, H5F_ACC_RDONLY), deflated_file(deflated, H5F_ACC_RDONLY);
+  for (const std::string dataset : {"/time", "/muscle/force", "/muscle/inductance_measure"})
+    CHECK(bitwise_equal(read_series(plain_file, dataset), read_series(deflated_file, dataset)));
+  CHECK(plain_file.openDataSet("/muscle/force").getCreatePlist().getNfilters() == 0);
+  CHECK(deflated_file.openDataSet("/muscle/force").getCreatePlist().getNfilters() == 2);
+  CHECK(std::filesystem::file_size(deflated) * 3 < std::filesystem::file_size(plain) * 2);
+  CHECK(std::filesystem::file_size(harder) <= std::filesystem::file_size(deflated));
+  // The default is not written into the resolved scenario: records made before the key keep
+  // their configuration attribute.
+  CHECK(text_attribute(plain_file.openGroup("/"), "config").find("compression") ==
+        std::string::npos);
+  CHECK_THAT(config_error(physical_muscle_yaml(), {"output.compression_level=3"}),
+             Catch::Contains("output.compression_level") &&
+                 Catch::Contains("give it with 'compression: deflate'"));
+  CHECK_THAT(config_error(physical_muscle_yaml(), {"output.compression=zip"}),
+             Catch::Contains("output.compression") && Catch::Contains("none, deflate"));
 }
 
 TEST_CASE("A failed run is kept as .failed.h5 with its reason, and never under the final name") {

@@ -29,15 +29,18 @@ void write_scalar(H5::H5Object& object, const std::string& name, const H5::PredT
 // A series of one number per time (1-D), or of a member set's `columns` (time x column, even for
 // one member). A 2-D chunk holds about as many numbers as a 1-D one.
 H5::DataSet create_series(H5::Group& parent, const std::string& name, const std::string& units,
-                          std::size_t chunk, std::size_t columns, bool matrix) {
+                          std::size_t chunk, std::size_t columns, bool matrix,
+                          int compression_level) {
   const int rank = matrix ? 2 : 1;
   const hsize_t initial[2] = {0, columns}, maximum[2] = {H5S_UNLIMITED, columns};
   const hsize_t chunk_size[2] = {std::max<hsize_t>(1, chunk / columns), columns};
   H5::DataSpace space(rank, initial, maximum);
   H5::DSetCreatPropList properties;
   properties.setChunk(rank, chunk_size);
-  properties.setShuffle();
-  properties.setDeflate(1);
+  if (compression_level > 0) {
+    properties.setShuffle();
+    properties.setDeflate(compression_level);
+  }
   H5::DataSet dataset = parent.createDataSet(name, H5::PredType::NATIVE_DOUBLE, space, properties);
   write_text_attribute(dataset, "units", units);
   return dataset;
@@ -107,7 +110,10 @@ std::string Hdf5Recorder::failed_path(const std::string& path) {
 
 Hdf5Recorder::Hdf5Recorder(std::string path, const System& system, const Context& context,
                            const RecordMetadata& metadata, std::size_t chunk_samples)
-    : path_(std::move(path)), file_(std::make_unique<File>()), chunk_samples_(chunk_samples) {
+    : path_(std::move(path)),
+      file_(std::make_unique<File>()),
+      chunk_samples_(chunk_samples),
+      compression_level_(metadata.compression_level) {
   H5::Exception::dontPrint();
   create_parent_directories(path_);
   file_->file = H5::H5File(partial_path(path_), H5F_ACC_TRUNC);
@@ -123,13 +129,15 @@ Hdf5Recorder::Hdf5Recorder(std::string path, const System& system, const Context
   write_scalar(root, "output_interval", H5::PredType::NATIVE_DOUBLE, metadata.output_interval);
   write_scalar(root, "duration", H5::PredType::NATIVE_DOUBLE, metadata.duration);
 
-  file_->datasets.push_back(create_series(root, "time", "s", chunk_samples_, 1, false));
+  file_->datasets.push_back(
+      create_series(root, "time", "s", chunk_samples_, 1, false, compression_level_));
   columns_.emplace_back();
   for (auto& series : record_layout(system)) {
     // A part's group sits inside its instance's ("/muscle/maxwell_branch").
     H5::Group group = group_at(file_->file, "/" + series.group);
-    H5::DataSet dataset = create_series(group, series.name, series.unit, chunk_samples_,
-                                        series.signal_indices.size(), !series.members.empty());
+    H5::DataSet dataset =
+        create_series(group, series.name, series.unit, chunk_samples_, series.signal_indices.size(),
+                      !series.members.empty(), compression_level_);
     if (!series.members.empty()) write_text_array_attribute(dataset, "members", series.members);
     file_->datasets.push_back(dataset);
     columns_.push_back(std::move(series.signal_indices));

@@ -21,6 +21,7 @@ struct RecordMetadata {
   std::string linear_solver;
   double output_interval = 0.0;
   double duration = 0.0;
+  int compression_level = 0;  // deflate (with shuffle) at this level; 0: none
 };
 
 // Writes a run to one HDF5 file: /time plus one dataset per output channel, grouped by
@@ -28,8 +29,9 @@ struct RecordMetadata {
 // one (time x member) dataset per output (/b/temperature, /b/drive/power) with a `members`
 // attribute naming the columns, and their fixed facts (/b/centre_x) a value per member; /inputs
 // describes every prescribed signal; root attributes carry the version, git commit, resolved
-// config, seed and solver statistics. Datasets are chunked, shuffled and deflated, and written
-// chunk by chunk, so memory stays bounded however long the run. The file is written as
+// config, seed and solver statistics. Datasets are chunked (and, if asked, shuffled and
+// deflated) and written chunk by chunk, so memory stays bounded however long the run. The file is
+// written as
 // "<out>.partial" and renamed to <out> only when complete; a failed run is kept as "<out
 // stem>.failed.h5" with status = "failed" and the reason.
 class Hdf5Recorder final : public OutputSink {
@@ -60,6 +62,7 @@ class Hdf5Recorder final : public OutputSink {
   std::string path_;
   std::unique_ptr<File> file_;
   std::size_t chunk_samples_;
+  int compression_level_;
   static constexpr std::size_t kBufferedValues = std::size_t{1} << 20;
   std::vector<std::vector<int>> columns_;     // per dataset, its signals ([0], time: none)
   std::vector<std::vector<double>> buffers_;  // per dataset, rows of its columns ([0] is time)
