@@ -16,6 +16,7 @@
 #include "sim/config/config_error.h"
 #include "sim/kind_listing.h"
 #include "sim/run.h"
+#include "sweep/batch_run.h"
 #include "sweep/sweep_executor.h"
 #include "sweep/sweep_mpi.h"
 #include "tcpmsim/version.h"
@@ -42,6 +43,9 @@ struct Options {
   tcpmsim::SpringForcesOptions spring_forces;
   tcpmsim::ControlTasksOptions control_tasks;
   tcpmsim::sweep::SweepOptions sweep;
+  std::vector<std::string> configs;  // run: one or more scenario files
+  std::string output_directory = "results";
+  int jobs = 1;
 };
 
 tcpmsim::Scenario load(const Options& options) {
@@ -80,8 +84,42 @@ int validate(const Options& options) {
   return kSuccess;
 }
 
+// Several scenario files: a batch on the sweeps' run pool (sweep/batch_run.h).
+int run_batch(const Options& options) {
+  if (!options.output.empty()) {
+    std::cerr << "tcpmsim: -o names one record; with several scenarios use --output-dir\n";
+    return kUsageError;
+  }
+  std::vector<tcpmsim::sweep::BatchRun> runs;
+  {
+    tcpmsim::BatchProgress progress(stderr, "batch");
+    runs = tcpmsim::sweep::run_batch(
+        {options.configs, options.overrides, options.output_directory, options.jobs},
+        std::make_shared<tcpmsim::UnitSystem>(), [&](std::size_t done, std::size_t total) {
+          if (!options.quiet) progress.update(done, total);
+        });
+  }
+  int failed = 0;
+  for (const auto& run : runs) {
+    if (run.outcome.succeeded) {
+      if (!options.quiet)
+        std::cout << "wrote " << run.outcome.output_path << " (" << run.config
+                  << "): " << run.outcome.statistics.steps << " steps, " << run.outcome.wall_seconds
+                  << " s wall\n";
+    } else {
+      ++failed;
+      std::cerr << "tcpmsim: " << run.config << ": simulation failed: " << run.outcome.failure
+                << "\ntcpmsim: the record up to the failure is in " << run.outcome.output_path
+                << "\n";
+    }
+  }
+  return failed > 0 ? kSimulationFailed : kSuccess;
+}
+
 int run(const Options& options) {
-  tcpmsim::Scenario scenario = load(options);
+  if (options.configs.size() > 1) return run_batch(options);
+  tcpmsim::Scenario scenario = tcpmsim::load_scenario(options.configs.front(), options.overrides,
+                                                      std::make_shared<tcpmsim::UnitSystem>());
   const std::string output =
       options.output.empty() ? "results/" + scenario.settings.name + ".h5" : options.output;
   tcpmsim::RunOutcome outcome;
@@ -147,7 +185,7 @@ int sweep(const Options& options) {
   if (settings.output.empty()) settings.output = "results/" + spec.name + ".h5";
   tcpmsim::sweep::SweepOutcome outcome;
   {
-    tcpmsim::BatchProgress progress(stderr);
+    tcpmsim::BatchProgress progress(stderr, "sweep");
     auto report = [&](std::size_t done, std::size_t total) {
       if (!options.quiet) progress.update(done, total);
     };
@@ -241,8 +279,22 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   Options options;
 
-  CLI::App* run_command = app.add_subcommand("run", "Simulate a scenario and write an HDF5 record");
-  add_common(*run_command, options);
+  CLI::App* run_command =
+      app.add_subcommand("run", "Simulate scenarios and write an HDF5 record of each");
+  run_command
+      ->add_option("config", options.configs,
+                   "Scenario files (YAML); several run as a batch on --jobs threads")
+      ->required()
+      ->check(CLI::ExistingFile);
+  run_command
+      ->add_option("--set", options.overrides,
+                   "Override a value (in every scenario), e.g. --set 'muscle.mechanics.k1=12 N/m' "
+                   "(repeatable)")
+      ->type_name("KEY.PATH=VALUE");
+  run_command->add_option("-j,--jobs", options.jobs, "Scenarios in parallel (threads)")
+      ->check(CLI::Range(1, 256));
+  run_command->add_option("--output-dir", options.output_directory,
+                          "Where several scenarios' records go (default: results)");
   run_command->add_option("-o,--output", options.output,
                           "Output file (default: results/<scenario name>.h5)");
   run_command->add_flag("-q,--quiet", options.quiet, "No progress line or summary");

@@ -25,8 +25,9 @@ void ProgressLine::update(double time, long steps) {
   printed_ = true;
 }
 
-BatchProgress::BatchProgress(std::FILE* stream)
+BatchProgress::BatchProgress(std::FILE* stream, const char* label)
     : stream_(stream),
+      label_(label),
       terminal_(isatty(fileno(stream)) != 0),
       start_(std::chrono::steady_clock::now()),
       last_(start_) {}
@@ -62,7 +63,7 @@ void BatchProgress::update(std::size_t done, std::size_t total) {
     const bool step = done / tenth != last_done_ / tenth;
     if (printed_ && !finished && !step && now - last_ < std::chrono::seconds(30)) return;
     if (printed_ && done == last_done_ && !finished) return;
-    std::fprintf(stream_, "sweep: %zu/%zu runs done, %.1f s elapsed", done, total, elapsed);
+    std::fprintf(stream_, "%s: %zu/%zu runs done, %.1f s elapsed", label_, done, total, elapsed);
     if (counted > 0 && !finished) std::fprintf(stream_, ", about %.0f s left", left);
     std::fputs("\n", stream_);
     std::fflush(stream_);

@@ -26,12 +26,14 @@ class ProgressLine {
 // and at least every 30 s, so that a cluster job's output shows where it is.
 class BatchProgress {
  public:
-  explicit BatchProgress(std::FILE* stream);
+  // `label` starts the plain lines: "sweep", "batch".
+  BatchProgress(std::FILE* stream, const char* label);
   ~BatchProgress();
   void update(std::size_t done, std::size_t total);
 
  private:
   std::FILE* stream_;
+  const char* label_;
   bool terminal_;
   bool printed_ = false;
   std::size_t first_done_ = 0;  // done when it started (resumed runs), not counted for the rate

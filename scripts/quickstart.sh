@@ -9,4 +9,4 @@ scripts/install-deps.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DTCPMSIM_BUILD_TESTS=OFF
 cmake --build build -j"$(nproc)" --target tcpmsim
 build/tcpmsim run configs/ch7_identification.yaml -o results/ch7_identification.h5
-/usr/bin/python3 tools/plot_traces.py results/ch7_identification.h5 -o results/ch7_identification.png
+tools/tcpmsim-plot traces results/ch7_identification.h5 -o results/ch7_identification.png

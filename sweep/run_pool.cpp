@@ -10,9 +10,15 @@
 
 namespace tcpmsim::sweep {
 
-void run_slots(const SweepSpec& spec, const SweepStore& store,
-               const std::vector<std::size_t>& pending, int threads, RunDispenser& dispenser,
-               ScenarioLoader& loader, const std::function<void(std::size_t)>& progress) {
+std::optional<std::size_t> CountingDispenser::next() {
+  const std::size_t slot = next_.fetch_add(1);
+  if (slot >= count_) return std::nullopt;
+  return slot;
+}
+
+void run_slots(std::size_t slots, int threads, RunDispenser& dispenser,
+               const std::function<void(std::size_t)>& run,
+               const std::function<void(std::size_t)>& progress) {
   std::size_t done = 0;
   int exited = 0;
   std::atomic<bool> stopped{false};
@@ -29,7 +35,7 @@ void run_slots(const SweepSpec& spec, const SweepStore& store,
         return;
       }
       try {
-        store.write(execute_run(spec, pending[*slot], loader));
+        run(*slot);
       } catch (...) {
         const std::lock_guard lock(mutex);
         if (!failure) failure = std::current_exception();
@@ -40,9 +46,9 @@ void run_slots(const SweepSpec& spec, const SweepStore& store,
       changed.notify_all();
     }
   };
-  const int count = std::max(1, std::min<int>(threads, static_cast<int>(pending.size())));
+  const int count = std::max(1, std::min<int>(threads, static_cast<int>(slots)));
   std::vector<std::thread> workers;
-  for (int t = 0; t < count && !pending.empty(); ++t) workers.emplace_back(work);
+  for (int t = 0; t < count && slots > 0; ++t) workers.emplace_back(work);
   {
     std::unique_lock lock(mutex);
     for (;;) {

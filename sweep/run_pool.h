@@ -1,13 +1,10 @@
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <functional>
 #include <optional>
 #include <vector>
-
-#include "sweep/sweep_run.h"
-#include "sweep/sweep_spec.h"
-#include "sweep/sweep_store.h"
 
 namespace tcpmsim::sweep {
 
@@ -21,12 +18,24 @@ class RunDispenser {
   virtual std::optional<std::size_t> next() = 0;
 };
 
-// Runs the slots `dispenser` hands out on `threads` threads, storing each result as soon as it
-// is done. `progress` is called from the calling thread with the runs this process has done, a
-// few times a second and at the end. An error storing a run stops this process' threads after
-// the runs they hold and is rethrown.
-void run_slots(const SweepSpec& spec, const SweepStore& store,
-               const std::vector<std::size_t>& pending, int threads, RunDispenser& dispenser,
-               ScenarioLoader& loader, const std::function<void(std::size_t)>& progress);
+// The threads of one process take the slots 0, 1, ... in order.
+class CountingDispenser final : public RunDispenser {
+ public:
+  explicit CountingDispenser(std::size_t count) : count_(count) {}
+  std::optional<std::size_t> next() override;
+
+ private:
+  std::size_t count_;
+  std::atomic<std::size_t> next_{0};
+};
+
+// Calls run(slot) for every slot `dispenser` hands out, on up to `threads` threads (at most
+// `slots`, the number it will hand out). `progress` is called from the calling thread with the
+// slots this process has done, a few times a second and at the end. An exception from `run`
+// stops this process' threads after the slots they hold and is rethrown (runs report their own
+// failures; what escapes is an error of the whole batch, such as an unwritable file).
+void run_slots(std::size_t slots, int threads, RunDispenser& dispenser,
+               const std::function<void(std::size_t)>& run,
+               const std::function<void(std::size_t)>& progress);
 
 }  // namespace tcpmsim::sweep

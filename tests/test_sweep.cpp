@@ -11,11 +11,14 @@
 
 #include "sim/config/config_error.h"
 #include "sim/io/hdf5_files.h"
+#include "sim/run.h"
+#include "sweep/batch_run.h"
 #include "sweep/sweep_design.h"
 #include "sweep/sweep_executor.h"
 #include "sweep/sweep_run.h"
 #include "sweep/sweep_spec.h"
 #include "sweep/sweep_store.h"
+#include "tests/support/record_digest.h"
 #include "tests/support/test_support.h"
 
 using namespace tcpmsim;
@@ -262,4 +265,27 @@ TEST_CASE("a resumed sweep redoes only the missing runs and refuses another swee
   CHECK(!std::filesystem::exists(resumed + ".parts"));
   for (const std::string column : {"time_constant", "peak_temperature", "heat"})
     CHECK(bitwise_equal(read_column(whole, column), read_column(resumed, column)));
+}
+
+TEST_CASE("a batch of scenario files on two threads writes the records each would alone",
+          "[sweep][thread]") {
+  SweepDirectory directory;
+  const std::vector<std::string> configs{source_path("configs/ch7_control/force_steps.yaml"),
+                                         source_path("configs/sweeps/thermal_step.yaml"),
+                                         source_path("configs/composition/two_muscles.yaml")};
+  const std::string batch = (directory.path / "batch").string();
+  const auto runs = run_batch({configs, {"scenario.duration=60 s"}, batch, 2}, shared_units());
+  REQUIRE(runs.size() == 3);
+  for (std::size_t k = 0; k < configs.size(); ++k) {
+    INFO(configs[k]);
+    REQUIRE(runs[k].outcome.succeeded);
+    Scenario scenario = load_scenario(configs[k], {"scenario.duration=60 s"}, shared_units());
+    const std::string alone = (directory.path / ("alone_" + std::to_string(k) + ".h5")).string();
+    REQUIRE(run_scenario(scenario, alone).succeeded);
+    CHECK(runs[k].outcome.output_path == batch + "/" + scenario.settings.name + ".h5");
+    CHECK(record_digest(runs[k].outcome.output_path) == record_digest(alone));
+  }
+  // Two files of one scenario would write one record: refused before any run.
+  CHECK_THROWS_WITH(run_batch({{configs[0], configs[0]}, {}, batch, 2}, shared_units()),
+                    Catch::Contains("their records would both be"));
 }

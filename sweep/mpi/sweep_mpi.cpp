@@ -142,12 +142,14 @@ SweepOutcome run_sweep_mpi(const SweepSpec& spec, const SweepOptions& options,
   {
     SharedCounter counter(pending.size(), session.rank());
     try {
-      run_slots(spec, store, pending, session.serialised() ? options.threads : 1, counter, loader,
-                [&](std::size_t) {
-                  // Rank 0 reports the runs handed out so far (every rank's).
-                  if (progress && session.rank() == 0)
-                    progress(outcome.resumed + counter.handed_out(), outcome.runs);
-                });
+      run_slots(
+          pending.size(), session.serialised() ? options.threads : 1, counter,
+          [&](std::size_t slot) { store.write(execute_run(spec, pending[slot], loader)); },
+          [&](std::size_t) {
+            // Rank 0 reports the runs handed out so far (every rank's).
+            if (progress && session.rank() == 0)
+              progress(outcome.resumed + counter.handed_out(), outcome.runs);
+          });
     } catch (const std::exception& error) {
       local_problem = error.what();
     }

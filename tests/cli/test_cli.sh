@@ -41,6 +41,11 @@ contains "$work/err" "error: muscle.mechanics.k1: wrong unit in '10.8e-3 N': uni
 expect 3 "a bad --set is a configuration error" -- "$tcpmsim" validate "$config" --set "solver.rtol=-1"
 contains "$work/err" "command line (--set solver.rtol=-1): error: solver.rtol:" "the error points at the --set"
 
+expect 0 "several scenarios run as a batch on threads" -- "$tcpmsim" run "$config" \
+  "$source_dir/configs/composition/two_muscles.yaml" --jobs 2 --set "scenario.duration=5 s" \
+  --output-dir "$work/batch" --quiet
+[[ -s $work/batch/ch7_identification.h5 && -s $work/batch/two_muscles.h5 ]] && echo "ok: each record under its scenario's name" || { echo "FAIL: batch records missing"; failures=$((failures + 1)); }
+expect 2 "-o with several scenarios is a usage error" -- "$tcpmsim" run "$config" "$source_dir/configs/composition/two_muscles.yaml" -o "$work/x.h5"
 expect 0 "kinds lists every kind" -- "$tcpmsim" kinds
 contains "$work/out" "maxwell_branch" "kinds names the effects"
 contains "$work/out" "stiffness                           quantity in N/m, a positive value; required" "kinds gives a key's unit, range and whether it is required"
@@ -104,7 +109,11 @@ expect 2 "coil-fit with a missing data directory is a usage error" -- "$tcpmsim"
   "$source_dir/configs/springs/s1.yaml" --data "$work/none"
 
 if /usr/bin/python3 -c "import h5py, matplotlib" 2>/dev/null; then
-  expect 0 "the plot tool reads the record" -- /usr/bin/python3 "$source_dir/tools/plot_traces.py" "$work/run.h5" -o "$work/run.png"
+  expect 0 "the plot tool reads the record" -- "$source_dir/tools/tcpmsim-plot" traces "$work/run.h5" -o "$work/run.png"
+  expect 1 "the plot tool names a channel the record lacks" -- "$source_dir/tools/tcpmsim-plot" traces "$work/run.h5" --channels muscle/colour -o "$work/none.png"
+  contains "$work/err" "none of the channels muscle/colour is in $work/run.h5" "the plot error names the channel and the file"
+  expect 1 "a record is not a control-tasks file" -- "$source_dir/tools/tcpmsim-plot" bode "$work/run.h5" -o "$work/none.png"
+  contains "$work/err" "holds the sweep tasks (none)" "the plot error says what the file holds"
   [[ -s $work/run.png ]] && echo "ok: plot written" || { echo "FAIL: no plot"; failures=$((failures + 1)); }
 fi
 

@@ -1,43 +1,26 @@
-#!/usr/bin/python3
-"""Plot a bundle's temperature spread from a tcpmsim record.
+"""A bundle's per-muscle spread from a tcpmsim record.
 
 Left: the bundle's cross-section (/<bundle>/centre_x, centre_y), each muscle coloured by its
-temperature at --time (default: the end). Right: every member's temperature over time, coloured
-by how many neighbours shield it. For example
-    tools/plot_bundle.py results/bundle.h5 --bundle bundle --time 149 -o docs/images/bundle.png
-
-Uses Debian's python3-h5py and python3-matplotlib (no network installs).
-"""
-import argparse
-import sys
-
-import h5py
-import matplotlib
+temperature at `time` (default: the end). Right: every member's temperature over time, coloured
+by how many neighbours shield it."""
 import numpy as np
+from matplotlib.patches import Circle
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib.patches import Circle  # noqa: E402
+from tcpmsim_plot.common import PlotError, open_file, plt, save, texts
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("record", help="a tcpmsim HDF5 record of a scenario with a bundle")
-    parser.add_argument("--bundle", default="bundle", help="the bundle's name (default: %(default)s)")
-    parser.add_argument("--time", type=float, help="time of the cross-section [s] (default: the end)")
-    parser.add_argument("-o", "--output", help="PNG to write (default: the record's name with .png)")
-    arguments = parser.parse_args()
+def plot_bundle(path, bundle, at_time, output):
+    record = open_file(path, required="time")
     try:
-        record = h5py.File(arguments.record, "r")
-        group = record[arguments.bundle]
+        group = record[bundle]
         temperature = group["temperature"][:] - 273.15
         x, y = group["centre_x"][:] * 1e3, group["centre_y"][:] * 1e3
         neighbours = group["neighbours"][:]
-        members = [m.decode() if isinstance(m, bytes) else m for m in group["temperature"].attrs["members"]]
-    except (OSError, KeyError) as error:
-        sys.exit(f"plot_bundle: {arguments.record} has no bundle '{arguments.bundle}' record: {error}")
+        members = texts(group["temperature"].attrs["members"])
+    except KeyError as error:
+        raise PlotError(f"{path} has no record of a bundle '{bundle}': {error}") from error
     time = record["time"][:]
-    index = len(time) - 1 if arguments.time is None else int(np.argmin(np.abs(time - arguments.time)))
+    index = len(time) - 1 if at_time is None else int(np.argmin(np.abs(time - at_time)))
 
     figure, (section, traces) = plt.subplots(1, 2, figsize=(11, 4.6), gridspec_kw={"width_ratios": [1, 1.5]})
     # Member 0 is the centre; its nearest neighbour is one pitch away.
@@ -70,12 +53,6 @@ def main():
     traces.grid(True, alpha=0.3)
     traces.legend(fontsize=8)
     traces.set_title(f"{len(members)} members")
-    figure.suptitle(f"{record.attrs.get('scenario', '')}: {arguments.bundle}")
-    figure.tight_layout()
-    output = arguments.output or arguments.record.rsplit(".", 1)[0] + ".png"
-    figure.savefig(output, dpi=110)
-    print(f"wrote {output}")
+    figure.suptitle(f"{record.attrs.get('scenario', '')}: {bundle}")
+    save(figure, output)
 
-
-if __name__ == "__main__":
-    main()

@@ -1,0 +1,3 @@
+from tcpmsim_plot.cli import main
+
+main()
