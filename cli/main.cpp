@@ -199,7 +199,8 @@ int sweep(const Options& options) {
     if (outcome.resumed > 0) std::cout << " (" << outcome.resumed << " done before the resume)";
     std::cout << ", " << outcome.failed << " failed\n";
   }
-  return kSuccess;
+  // Complete either way; a run that failed is in the summary with its message.
+  return outcome.failed > 0 ? kSimulationFailed : kSuccess;
 }
 
 int report_errors(int (*command)(const Options&), const Options& options);
@@ -233,6 +234,9 @@ int report_errors(int (*command)(const Options&), const Options& options) {
     return kOutputError;
   } catch (const std::exception& error) {
     std::cerr << "tcpmsim: internal error: " << error.what() << "\n";
+    return kInternalError;
+  } catch (...) {  // a library's own exception type (HDF5's) that nothing turned into a message
+    std::cerr << "tcpmsim: internal error: an unexpected exception\n";
     return kInternalError;
   }
 }

@@ -61,8 +61,9 @@ void BatchProgress::update(std::size_t done, std::size_t total) {
   } else {
     const std::size_t tenth = total >= 10 ? total / 10 : 1;
     const bool step = done / tenth != last_done_ / tenth;
-    if (printed_ && !finished && !step && now - last_ < std::chrono::seconds(30)) return;
-    if (printed_ && done == last_done_ && !finished) return;
+    const bool heartbeat = now - last_ >= std::chrono::seconds(30);
+    if (printed_ && (finished ? reported_finish_ : !(step || heartbeat))) return;
+    reported_finish_ = finished;
     std::fprintf(stream_, "%s: %zu/%zu runs done, %.1f s elapsed", label_, done, total, elapsed);
     if (counted > 0 && !finished) std::fprintf(stream_, ", about %.0f s left", left);
     std::fputs("\n", stream_);

@@ -39,6 +39,7 @@ class BatchProgress {
   std::size_t first_done_ = 0;  // done when it started (resumed runs), not counted for the rate
   bool started_ = false;
   std::size_t last_done_ = 0;
+  bool reported_finish_ = false;
   std::chrono::steady_clock::time_point start_;
   std::chrono::steady_clock::time_point last_;
 };

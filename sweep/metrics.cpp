@@ -103,7 +103,9 @@ double integral_over(const std::vector<double>& time, const std::vector<double>&
 MetricValue time_constant(const std::vector<double>& time, const std::vector<double>& y,
                           std::size_t begin, std::size_t end) {
   if (end < begin + 3) return {kNaN, "fewer than three samples in the window"};
-  const double sign = std::copysign(1.0, y[begin + 1] - y[begin]);
+  // The approach's direction from the whole window, not from its first difference (which may be
+  // flat or noise).
+  const double sign = std::copysign(1.0, y[end - 1] - y[begin]);
   Eigen::MatrixXd design(static_cast<Eigen::Index>(end - begin - 1), 2);
   Eigen::VectorXd target(design.rows());
   Eigen::Index rows = 0;
@@ -191,6 +193,11 @@ MetricSpec read_metric(const ConfigNode& node, const std::string& scenario_name,
   std::string unit;
   metric.channel = read_channel(node, "channel", scenario_name, scenario, &unit);
   const double duration = scenario.settings.duration;
+  if (metric.kind == MetricKind::bandwidth) {
+    for (const char* key : {"from", "to"}) {
+      if (node.has(key)) node.at(key).fail("a bandwidth is of the whole sweep: it takes no window");
+    }
+  }
   metric.from = node.quantity_or("from", "s", 0.0, ValueCheck::non_negative());
   metric.to = node.quantity_or("to", "s", duration, ValueCheck::positive());
   if (metric.to <= metric.from) node.at("to").fail("the window must end after it starts ('from')");
@@ -200,14 +207,17 @@ MetricSpec read_metric(const ConfigNode& node, const std::string& scenario_name,
   if (metric.kind == MetricKind::rise_time) {
     if (node.has("reference"))
       metric.reference = read_channel(node, "reference", scenario_name, scenario);
+    else if (metric.from <= 0.0)
+      node.fail("an open-loop rise time needs 'from': the step's instant, after the first sample");
     metric.lower = node.number_or("lower", 0.1, ValueCheck::fraction());
     metric.upper = node.number_or("upper", 0.9, ValueCheck::fraction());
     if (metric.upper <= metric.lower) node.at("upper").fail("must exceed 'lower'");
   }
   if (metric.kind == MetricKind::integral)
     metric.held = node.choice_or("rule", {"trapezoidal", "held"}, "trapezoidal") == "held";
-  if (metric.kind == MetricKind::bandwidth)
+  if (metric.kind == MetricKind::bandwidth) {
     metric.reference = read_channel(node, "reference", scenario_name, scenario);
+  }
   if (metric.kind == MetricKind::rmse)
     metric.estimate = read_channel(node, "estimate", scenario_name, scenario);
   metric.unit = value_unit(metric.kind, unit);
@@ -222,7 +232,7 @@ MetricSpec read_metric(const ConfigNode& node, const std::string& scenario_name,
     if (metric.kind == MetricKind::bandwidth && sweep->end_time() > metric.to + kTimeSlack)
       node.at("reference")
           .fail("the sweep ends at " + std::to_string(sweep->end_time()) +
-                " s, after the window (to " + std::to_string(metric.to) + " s)");
+                " s, after the scenario does (" + std::to_string(metric.to) + " s)");
   }
   return metric;
 }
@@ -257,9 +267,11 @@ MetricValue evaluate_metric(const MetricSpec& metric, const MemoryRecord& record
       return {beyond / std::abs(last - start), ""};
     }
     case MetricKind::bandwidth: {
+      const Signal* reference = reference_signal(context.system(), context, metric.reference);
+      if (reference == nullptr)
+        return {kNaN, "'" + metric.reference + "' is not a prescribed signal"};
       TaskAnalysis analysis;
-      analyse_task(record, *reference_signal(context.system(), context, metric.reference),
-                   metric.reference, metric.channel, "", analysis);
+      analyse_task(record, *reference, metric.reference, metric.channel, "", analysis);
       if (!analysis.bandwidth) return {kNaN, "no -3 dB crossing within the sweep"};
       return {*analysis.bandwidth, ""};
     }

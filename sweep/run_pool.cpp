@@ -63,6 +63,7 @@ void run_slots(std::size_t slots, int threads, RunDispenser& dispenser,
     }
   }
   for (auto& worker : workers) worker.join();
+  if (progress) progress(done);  // the last word: every slot of this process counted
   if (failure) std::rethrow_exception(failure);
 }
 

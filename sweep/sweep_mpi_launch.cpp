@@ -6,9 +6,9 @@
 namespace tcpmsim::sweep {
 namespace {
 
-// The rank variables of Open MPI, MPICH/Hydra (PMI) and PMIx launchers, and Slurm.
-constexpr const char* kRankVariables[] = {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK",
-                                          "SLURM_PROCID"};
+// The rank variables of Open MPI, MPICH/Hydra (PMI) and PMIx launchers (srun with PMIx sets
+// PMIX_RANK; a plain srun task is not an MPI rank and runs the whole sweep).
+constexpr const char* kRankVariables[] = {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"};
 
 }  // namespace
 

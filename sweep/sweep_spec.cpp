@@ -1,5 +1,6 @@
 #include "sweep/sweep_spec.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -105,8 +106,9 @@ std::pair<double, double> read_ends(const ConfigNode& node, const std::string& u
   return {from, to};
 }
 
+// At most a million values an axis: the runs are held in memory.
 int read_count(const ConfigNode& node) {
-  return static_cast<int>(node.integer("count", ValueCheck::at_least(1)));
+  return static_cast<int>(node.integer("count", ValueCheck::between(1, 1e6)));
 }
 
 std::vector<double> read_axis_values(const ConfigNode& node, const Axis& axis, std::uint64_t seed,
@@ -163,20 +165,27 @@ std::vector<double> read_axis_values(const ConfigNode& node, const Axis& axis, s
   return values;
 }
 
-// Checks that every scenario takes a structural axis' first value.
+void check_structural_value(const ConfigNode& node, const Axis& axis, const SweepScenario& scenario,
+                            const std::string& text,
+                            const std::shared_ptr<const UnitSystem>& units) {
+  auto overrides = scenario.overrides;
+  overrides.push_back(axis.path + "=" + text);
+  try {
+    load_scenario(scenario.file, overrides, units);
+  } catch (const ConfigError& error) {
+    node.fail("'" + axis.path + "' is not a parameter of scenario '" + scenario.name +
+              "' (tcpmsim validate lists them), and setting it to '" + text +
+              "' as a key fails: " + error.problem());
+  }
+}
+
+// Checks that every scenario takes each of a structural axis' values, before any run.
 void check_structural(const ConfigNode& node, const Axis& axis,
                       const std::vector<SweepScenario>& scenarios,
                       const std::shared_ptr<const UnitSystem>& units) {
+  const std::set<std::string> distinct(axis.texts.begin(), axis.texts.end());
   for (const auto& scenario : scenarios) {
-    auto overrides = scenario.overrides;
-    overrides.push_back(axis.path + "=" + axis.texts.front());
-    try {
-      load_scenario(scenario.file, overrides, units);
-    } catch (const ConfigError& error) {
-      node.fail(
-          "'" + axis.path + "' is not a parameter of scenario '" + scenario.name +
-          "' (tcpmsim validate lists them), and setting it as a key fails: " + error.problem());
-    }
+    for (const auto& text : distinct) check_structural_value(node, axis, scenario, text, units);
   }
 }
 
@@ -319,10 +328,35 @@ void read_store(const ConfigNode& root, SweepSpec& spec) {
   }
 }
 
-void read_metrics(const ConfigNode& root, SweepSpec& spec) {
+// The summary's columns so far, each named once: what names it, for the message.
+using Columns = std::map<std::string, std::string>;
+
+Columns fixed_columns() {
+  return {
+      {"id", "the run number"}, {"status", "the run's status"}, {"message", "the run's message"}};
+}
+
+// Claims a summary column for `what`, failing at `node` if something has it already.
+void claim_column(Columns& columns, const std::string& name, const std::string& what,
+                  const ConfigNode& node) {
+  const auto [earlier, added] = columns.emplace(summary_column(name), what);
+  if (!added)
+    node.fail("its summary column '" + earlier->first + "' is already " + earlier->second);
+}
+
+void read_derived_list(const ConfigNode& root, SweepSpec& spec, const UnitSystem& units,
+                       Columns& columns) {
+  const auto list = root.find("derived");
+  if (!list) return;
+  for (const auto& node : list->elements()) {
+    spec.derived.push_back(read_derived(node, spec.scenarios, units));
+    claim_column(columns, spec.derived.back().path, "a derived parameter's", node.at("parameter"));
+  }
+}
+
+void read_metrics(const ConfigNode& root, SweepSpec& spec, Columns& columns) {
   const auto list = root.find("metrics");
   if (!list) return;
-  std::set<std::string> names;
   for (const auto& node : list->elements()) {
     const SweepScenario* scenario = &spec.scenarios.front();
     if (spec.scenarios.size() > 1 || node.has("scenario")) {
@@ -335,13 +369,18 @@ void read_metrics(const ConfigNode& root, SweepSpec& spec) {
     MetricSpec metric = read_metric(node, scenario->name, *scenario->scenario);
     if (metric.name.empty() || metric.name.find('/') != std::string::npos)
       node.at("name").fail("a metric's name must be non-empty and hold no '/'");
-    if (!names.insert(metric.name).second)
-      node.at("name").fail("a second metric named '" + metric.name + "'");
+    claim_column(columns, metric.name, "metric '" + metric.name + "''s", node.at("name"));
     spec.metrics.push_back(std::move(metric));
   }
 }
 
 }  // namespace
+
+std::string summary_column(const std::string& name) {
+  std::string column = name;
+  std::replace(column.begin(), column.end(), '/', '.');
+  return column;
+}
 
 SweepSpec load_sweep(const std::string& file, const std::vector<std::string>& overrides,
                      std::shared_ptr<const UnitSystem> units) {
@@ -355,11 +394,15 @@ SweepSpec load_sweep(const std::string& file, const std::vector<std::string>& ov
   spec.seed = static_cast<std::uint64_t>(header.integer_or("seed", 1, ValueCheck::non_negative()));
   spec.scenarios = read_scenarios(root, file, read_set(root), units);
   read_axes(root, spec.scenarios, units, spec);
-  if (const auto list = root.find("derived")) {
-    for (const auto& node : list->elements())
-      spec.derived.push_back(read_derived(node, spec.scenarios, *units));
+  Columns columns = fixed_columns();
+  for (const auto& axis : spec.axes) {
+    const auto [earlier, added] = columns.emplace(summary_column(axis.path), "an axis'");
+    if (!added)
+      root.at("axes").fail("axis '" + axis.path + "''s summary column is already " +
+                           earlier->second);
   }
-  read_metrics(root, spec);
+  read_derived_list(root, spec, *units, columns);
+  read_metrics(root, spec, columns);
   read_store(root, spec);
   root.reject_unknown_keys();
   spec.resolved_yaml = root.resolved_yaml();

@@ -60,6 +60,10 @@ struct SweepSpec {
   double trace_interval = 0.0;  // [s], decimated traces
 };
 
+// The summary's dataset name of a parameter path or metric: '/' (a member's parameter,
+// "bundle/m03.mechanics.k1") becomes '.', so the summary stays flat.
+std::string summary_column(const std::string& name);
+
 // Reads `file` (overrides: --set on the sweep file itself). Scenario files are found relative
 // to the sweep file. Throws ConfigError located at the offending key.
 SweepSpec load_sweep(const std::string& file, const std::vector<std::string>& overrides,

@@ -75,7 +75,20 @@ void copy_traces(const H5::H5File& file, const std::string& group, const std::st
   }
 }
 
+// A run's traces into /runs/<name>/ of the output; a run that failed before any trace has
+// none.
+void copy_run_traces(const std::string& path, const std::string& name, Hdf5Writer& output) {
+  const std::lock_guard lock(hdf5_mutex());
+  try {
+    const H5::H5File file(path, H5F_ACC_RDONLY);
+    if (file.nameExists("/traces")) copy_traces(file, "/traces", "/runs/" + name, output);
+  } catch (const H5::Exception& error) {
+    throw std::runtime_error("cannot read " + path + ": " + error.getDetailMsg());
+  }
+}
+
 Part read_part(const std::string& path) {
+  const std::lock_guard lock(hdf5_mutex());
   try {
     const H5::H5File file(path, H5F_ACC_RDONLY);
     Part part;
@@ -103,10 +116,9 @@ void write_text_file(const std::string& path, const std::string& text) {
 
 std::string sweep_identity(const SweepSpec& spec) {
   std::ostringstream text;
-  text << "# sweep " << spec.file << ", " << spec.runs.size() << " runs\n" << spec.resolved_yaml;
+  text << "# sweep of " << spec.runs.size() << " runs\n" << spec.resolved_yaml;
   for (const auto& scenario : spec.scenarios)
-    text << "\n# scenario " << scenario.name << ": " << scenario.file << "\n"
-         << scenario.scenario->resolved_yaml;
+    text << "\n# scenario " << scenario.name << "\n" << scenario.scenario->resolved_yaml;
   return text.str();
 }
 
@@ -134,6 +146,10 @@ SweepStore::SweepStore(const SweepSpec& spec, std::string output, Access access)
   write_text_file(identity_file, identity);
 }
 
+bool SweepStore::visible() const {
+  return std::filesystem::exists(parts_ + "/" + kIdentityFile);
+}
+
 std::string SweepStore::part_path(std::size_t id) const {
   return parts_ + "/run_" + run_name(id, spec_.runs.size()) + ".h5";
 }
@@ -147,7 +163,6 @@ std::vector<std::size_t> SweepStore::pending() const {
 }
 
 void SweepStore::write(const RunResult& result) const {
-  const std::lock_guard lock(io_mutex_);
   Hdf5Writer part(part_path(result.id));
   part.write("/values", result.values, "");
   part.write("/metrics", result.metrics, "");
@@ -181,18 +196,16 @@ std::size_t SweepStore::merge() const {
     failed += part.succeeded ? 0 : 1;
     messages.push_back(part.message);
     wall.push_back(part.wall_seconds);
-    if (spec_.traces != TraceStorage::none) {
-      const H5::H5File file(part_path(id), H5F_ACC_RDONLY);
-      copy_traces(file, "/traces", "/runs/" + run_name(id, runs), output);
-    }
+    if (spec_.traces != TraceStorage::none)
+      copy_run_traces(part_path(id), run_name(id, runs), output);
   }
   output.write_integers("/summary/id", ids);
   for (std::size_t c = 0; c < columns.size(); ++c) {
     const Axis* axis = c < spec_.axes.size() ? &spec_.axes[c] : nullptr;
     if (axis != nullptr && axis->structural)
-      output.write_strings("/summary/" + columns[c].first, axis->texts);
+      output.write_strings("/summary/" + summary_column(columns[c].first), axis->texts);
     else
-      output.write("/summary/" + columns[c].first, values[c], columns[c].second);
+      output.write("/summary/" + summary_column(columns[c].first), values[c], columns[c].second);
   }
   for (std::size_t m = 0; m < metrics.size(); ++m)
     output.write("/summary/" + spec_.metrics[m].name, metrics[m], spec_.metrics[m].unit);
@@ -207,6 +220,8 @@ std::size_t SweepStore::merge() const {
   output.attribute("/", "runs", std::to_string(runs));
   output.attribute("/", "failed_runs", std::to_string(failed));
   output.commit();
+  // The runs first, the identity last: a merge killed here leaves parts a resume still takes.
+  for (std::size_t id = 0; id < runs; ++id) std::filesystem::remove(part_path(id));
   std::filesystem::remove_all(parts_);
   return failed;
 }

@@ -1,6 +1,5 @@
 #pragma once
 
-#include <mutex>
 #include <string>
 #include <vector>
 
@@ -30,10 +29,12 @@ class SweepStore {
   SweepStore(const SweepSpec& spec, std::string output, Access access);
 
   const std::string& output() const { return output_; }
+  // Whether this process sees the store's identity (an MPI rank on another node must).
+  bool visible() const;
   // The ids of the runs not yet done, in order.
   std::vector<std::size_t> pending() const;
-  // Safe to call from several threads at once: each run has its own file, and the writes are
-  // serialised (HDF5's C++ layer keeps process-wide state).
+  // Safe to call from several threads at once: each run has its own file (and HDF5 calls take
+  // turns, sim/io/hdf5_files.h).
   void write(const RunResult& result) const;
   // Writes the output file from the parts (all runs must be done) and removes them. Returns the
   // number of failed runs.
@@ -45,10 +46,10 @@ class SweepStore {
   const SweepSpec& spec_;
   std::string output_;
   std::string parts_;
-  mutable std::mutex io_mutex_;
 };
 
-// The text that identifies a sweep: its file and every scenario as read.
+// The text that identifies a sweep: its file and every scenario as read (not where the file
+// lies: the same sweep started from another directory resumes).
 std::string sweep_identity(const SweepSpec& spec);
 
 }  // namespace tcpmsim::sweep

@@ -156,7 +156,7 @@ TEST_CASE("a bad sweep file gets one located error before any run", "[sweep]") {
   CHECK_THAT(
       sweep_error(axis("{parameter: muscle.thermal.conductance, range: {from: 1 W/K, to: 2 W/K, "
                        "count: 0}}")),
-      Catch::Contains("axes[0].range.count") && Catch::Contains("at least 1"));
+      Catch::Contains("axes[0].range.count") && Catch::Contains("a value in [1, 1e+06]"));
   CHECK_THAT(sweep_error(axis("{parameter: muscle.thermal.conductance, range: {from: 0 W/K, "
                               "to: 2 W/K, count: 3, spacing: log}}")),
              Catch::Contains("a log range needs ends of one sign"));
@@ -174,6 +174,21 @@ TEST_CASE("a bad sweep file gets one located error before any run", "[sweep]") {
              Catch::Contains("the product has the unit"));
   CHECK_THAT(sweep_error("sweep: {name: bad}\nscenario: nowhere.yaml\n"),
              Catch::Contains("no scenario file"));
+  // A structural axis' every value is tried, not only its first.
+  CHECK_THAT(sweep_error(axis("{parameter: solver.rtol, values: [1e-6, -1]}")),
+             Catch::Contains("axes[0].parameter") && Catch::Contains("setting it to '-1'"));
+  // Summary columns are named once.
+  CHECK_THAT(sweep_error(head + "metrics:\n  - {name: status, type: maximum, "
+                                "channel: muscle/temperature}\n"),
+             Catch::Contains("metrics[0].name") &&
+                 Catch::Contains("summary column 'status' is already the run's status"));
+  CHECK_THAT(sweep_error(axis("{parameter: muscle.thermal.conductance, values: [1 W/K]}") +
+                         "metrics:\n  - {name: muscle.thermal.conductance, type: maximum, "
+                         "channel: muscle/temperature}\n"),
+             Catch::Contains("already an axis'"));
+  CHECK_THAT(sweep_error(head + "metrics:\n  - {name: r, type: rise_time, "
+                                "channel: muscle/temperature}\n"),
+             Catch::Contains("an open-loop rise time needs 'from'"));
 }
 
 TEST_CASE("a structural axis builds the scenario again for each of its values", "[sweep]") {
@@ -223,11 +238,13 @@ TEST_CASE("a sweep's results do not depend on the thread count, and obey C dT/dt
 
 TEST_CASE("a run that fails is recorded with its message, and the sweep goes on", "[sweep]") {
   SweepDirectory directory;
+  // With traces kept: the failed run has none, and the merge copes.
   const std::string text = "sweep: {name: failing}\n" + kStepScenario +
                            "axes:\n  - {parameter: muscle.thermal.heat_capacity, values: "
                            "[0.5 J/K, -1 J/K, 0.25 J/K]}\n"
                            "metrics:\n  - {name: tau, type: time_constant, "
-                           "channel: muscle/temperature, from: 10 s}\n";
+                           "channel: muscle/temperature, from: 10 s}\n"
+                           "store: {traces: decimated, interval: 10 s}\n";
   const auto spec = load_sweep(directory.write("failing.yaml", text), {}, shared_units());
   const std::string output = (directory.path / "failing.h5").string();
   const auto outcome = run_sweep(spec, {output, 2, false}, shared_units());
@@ -288,4 +305,25 @@ TEST_CASE("a batch of scenario files on two threads writes the records each woul
   // Two files of one scenario would write one record: refused before any run.
   CHECK_THROWS_WITH(run_batch({{configs[0], configs[0]}, {}, batch, 2}, shared_units()),
                     Catch::Contains("their records would both be"));
+}
+
+TEST_CASE("a time constant is measured on a cooling response as on a heating one", "[sweep]") {
+  SweepDirectory directory;
+  // 0.5 W from the start; off at 200 s: the muscle cools back with tau = C / hA.
+  const std::string text =
+      "sweep: {name: cooling}\n" + kStepScenario +
+      "set: ['drive.power={type: steps, initial: 0.5 W, times: [200 s], values: [0 W]}']\n"
+      "axes:\n  - {parameter: muscle.thermal.heat_capacity, values: [0.3 J/K, 0.6 J/K]}\n"
+      "metrics:\n  - {name: tau, type: time_constant, channel: muscle/temperature, "
+      "from: 200 s}\n  - {name: undershoot, type: overshoot, channel: muscle/temperature, "
+      "from: 200 s}\n";
+  const auto spec = load_sweep(directory.write("cooling.yaml", text), {}, shared_units());
+  const std::string output = (directory.path / "cooling.h5").string();
+  run_sweep(spec, {output, 2, false}, shared_units());
+  const auto tau = read_column(output, "tau");
+  CHECK(tau[0] == Approx(0.3 / 0.073).epsilon(1e-6));
+  CHECK(tau[1] == Approx(0.6 / 0.073).epsilon(1e-6));
+  // A first-order cooling never passes its final value: zero, to the solver's error on the
+  // temperature relative to the step (rtol 1e-10 x 370 K / 6.8 K = 5e-9).
+  for (double value : read_column(output, "undershoot")) CHECK(value == Approx(0.0).margin(2e-8));
 }

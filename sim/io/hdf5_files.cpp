@@ -6,6 +6,11 @@
 
 namespace tcpmsim {
 
+std::recursive_mutex& hdf5_mutex() {
+  static std::recursive_mutex mutex;  // mirrors the library's own process-wide state
+  return mutex;
+}
+
 std::string partial_path(const std::string& path) {
   return path + ".partial";
 }

@@ -2,12 +2,19 @@
 
 #include <H5Cpp.h>
 
+#include <mutex>
 #include <string>
 #include <vector>
 
 // What the HDF5 record and the analysis writers share about files: where a file lives until it
 // is complete, its directories, and text attributes.
 namespace tcpmsim {
+
+// The one lock every HDF5 call of tcpmsim holds. The library keeps process-wide state, and its
+// C++ layer is not made for several threads, so two threads writing two records (a batch of
+// runs, a sweep's part files) take turns in the library, while their integrations run at once.
+// Recursive: a locked writer may call another locked helper.
+std::recursive_mutex& hdf5_mutex();
 
 // "<path>.partial": the name a file is written under, renamed to `path` only when complete.
 std::string partial_path(const std::string& path);

@@ -114,6 +114,7 @@ Hdf5Recorder::Hdf5Recorder(std::string path, const System& system, const Context
       file_(std::make_unique<File>()),
       chunk_samples_(chunk_samples),
       compression_level_(metadata.compression_level) {
+  const std::lock_guard lock(hdf5_mutex());
   H5::Exception::dontPrint();
   create_parent_directories(path_);
   file_->file = H5::H5File(partial_path(path_), H5F_ACC_TRUNC);
@@ -199,6 +200,7 @@ void Hdf5Recorder::write_inputs(const System& system, const Context& context) {
 }
 
 Hdf5Recorder::~Hdf5Recorder() {
+  const std::lock_guard lock(hdf5_mutex());
   if (closed_) return;
   // Neither finished nor failed (an exception unwound past us): leave nothing behind.
   try {
@@ -219,6 +221,7 @@ void Hdf5Recorder::record(double time, std::span<const double> signals) {
 }
 
 void Hdf5Recorder::flush() {
+  const std::lock_guard lock(hdf5_mutex());
   const hsize_t count = buffers_[0].size();
   if (count == 0) return;
   const hsize_t total = written_ + count;
@@ -240,6 +243,7 @@ void Hdf5Recorder::flush() {
 
 void Hdf5Recorder::close_with(const std::string& status, const std::string& reason,
                               const SolverStatistics& statistics) {
+  const std::lock_guard lock(hdf5_mutex());
   flush();
   H5::Group root = file_->file.openGroup("/");
   write_text_attribute(root, "status", status);

@@ -18,6 +18,7 @@ namespace {
 // Runs an HDF5 action, turning the library's exceptions (not std::exceptions) into one.
 template <typename Action>
 void guarded(const std::string& path, Action&& action) {
+  const std::lock_guard lock(hdf5_mutex());
   try {
     action();
   } catch (const H5::Exception& error) {
@@ -54,13 +55,19 @@ std::string leaf(const std::string& dataset) {
 }  // namespace
 
 Hdf5Writer::Hdf5Writer(std::string path) : path_(std::move(path)), file_(std::make_unique<File>()) {
-  H5::Exception::dontPrint();
   create_parent_directories(path_);
-  guarded(path_, [&] { file_->file = H5::H5File(partial_path(path_), H5F_ACC_TRUNC); });
+  guarded(path_, [&] {
+    H5::Exception::dontPrint();
+    file_->file = H5::H5File(partial_path(path_), H5F_ACC_TRUNC);
+  });
 }
 
 Hdf5Writer::~Hdf5Writer() {
-  if (committed_) return;
+  const std::lock_guard lock(hdf5_mutex());
+  if (committed_) {
+    file_.reset();
+    return;
+  }
   try {
     file_.reset();
   } catch (...) {

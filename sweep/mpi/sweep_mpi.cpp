@@ -31,6 +31,7 @@ class MpiSession {
   MpiSession(const MpiSession&) = delete;
   MpiSession& operator=(const MpiSession&) = delete;
   int rank() const { return rank_; }
+  int size() const { return size_; }
   bool serialised() const { return serialised_; }
 
  private:
@@ -39,28 +40,43 @@ class MpiSession {
   bool serialised_ = false;
 };
 
-// Rank 0's text (empty: success) on every rank; a non-empty one is thrown everywhere, so no rank
-// waits for one that failed.
-void share_outcome(std::string problem) {
-  long length = static_cast<long>(problem.size());
-  MPI_Bcast(&length, 1, MPI_LONG, 0, MPI_COMM_WORLD);
-  problem.resize(static_cast<std::size_t>(length));
-  if (length > 0) MPI_Bcast(problem.data(), static_cast<int>(length), MPI_CHAR, 0, MPI_COMM_WORLD);
-  if (!problem.empty()) throw std::runtime_error(problem);
+// `root`'s text on every rank.
+std::string broadcast_text(std::string text, int root) {
+  long length = static_cast<long>(text.size());
+  MPI_Bcast(&length, 1, MPI_LONG, root, MPI_COMM_WORLD);
+  text.resize(static_cast<std::size_t>(length));
+  if (length > 0) MPI_Bcast(text.data(), static_cast<int>(length), MPI_CHAR, root, MPI_COMM_WORLD);
+  return text;
+}
+
+// Every rank's problem (empty: none) decided together: if any rank has one, the lowest such
+// rank's message is thrown on every rank, so no rank waits for one that failed and the cause
+// reaches rank 0, which reports it.
+void fail_together(const MpiSession& session, const std::string& problem) {
+  const int mine = problem.empty() ? session.size() : session.rank();
+  int first = session.size();
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  if (first == session.size()) return;
+  const std::string message = broadcast_text(problem, first);
+  throw std::runtime_error(first == 0 ? message : "rank " + std::to_string(first) + ": " + message);
+}
+
+// What `action` threw, as text ("" if nothing).
+template <typename Action>
+std::string problem_of(Action action) {
+  try {
+    action();
+  } catch (const std::exception& error) {
+    return error.what()[0] != '\0' ? error.what() : "unknown error";
+  } catch (...) {
+    return "unknown error";
+  }
+  return "";
 }
 
 template <typename Action>
 void on_rank_zero(const MpiSession& session, Action action) {
-  std::string problem;
-  if (session.rank() == 0) {
-    try {
-      action();
-    } catch (const std::exception& error) {
-      problem = error.what();
-      if (problem.empty()) problem = "unknown error";
-    }
-  }
-  share_outcome(problem);
+  fail_together(session, session.rank() == 0 ? problem_of(action) : std::string());
 }
 
 std::vector<std::size_t> broadcast(std::vector<std::size_t> values) {
@@ -133,6 +149,12 @@ SweepOutcome run_sweep_mpi(const SweepSpec& spec, const SweepOptions& options,
   on_rank_zero(session, [&] { pending = SweepStore(spec, options.output, access).pending(); });
   pending = broadcast(std::move(pending));
   const SweepStore store(spec, options.output, SweepStore::Access::join);
+  // Every rank must see the store rank 0 opened, or its runs would be written where the merge
+  // never looks.
+  fail_together(session, store.visible() ? std::string()
+                                         : "cannot see " + options.output +
+                                               ".parts/, which rank 0 created: the output must "
+                                               "be on a file system every rank shares");
   SweepOutcome outcome;
   outcome.runs = spec.runs.size();
   outcome.resumed = outcome.runs - pending.size();
