@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # A sweep killed with SIGKILL midway and resumed gives the same file as one never interrupted
-# (issue 11). Also: without --resume an interrupted sweep is not overwritten, and no output file
-# exists until the sweep is complete.
+# (issue 11). Also: without --resume an interrupted sweep is not overwritten, no output file
+# exists until the sweep is complete, and under a launcher the ranks' file equals one process'.
 # Usage: test_sweep_resume.sh TCPMSIM_BINARY SOURCE_DIR [LAUNCHER...]
 #   LAUNCHER: e.g. "mpirun -n 2" (then the sweep runs under it instead of on two threads)
 set -uo pipefail
@@ -41,3 +41,9 @@ grep -q "done before the resume" "$work/out" || fail "the resume did not reuse t
 [[ -e $work/killed.h5.parts ]] && fail "the parts were not removed after the merge"
 $python "$source_dir/tools/compare_sweeps.py" "$work/whole.h5" "$work/killed.h5" || fail "the resumed sweep differs"
 echo "ok: the resumed sweep equals the uninterrupted one"
+
+if ((${#launcher[@]} > 0)); then  # and the ranks' file equals one process' on threads
+  "$tcpmsim" sweep "$sweep" --jobs 2 -q -o "$work/threads.h5" || fail "the sweep on threads"
+  $python "$source_dir/tools/compare_sweeps.py" "$work/whole.h5" "$work/threads.h5" || fail "ranks and threads differ"
+  echo "ok: the sweep under ${launcher[*]} equals the one on two threads"
+fi
