@@ -8,21 +8,10 @@
 
 #include "sim/context.h"
 #include "sim/integrator.h"
+#include "sim/io/record_writer.h"
 #include "sim/system.h"
 
 namespace tcpmsim {
-
-struct RecordMetadata {
-  std::string scenario_name;
-  std::string config_file;
-  std::string resolved_config;  // YAML
-  std::uint64_t seed = 0;
-  double relative_tolerance = 0.0;
-  std::string linear_solver;
-  double output_interval = 0.0;
-  double duration = 0.0;
-  int compression_level = 0;  // deflate (with shuffle) at this level; 0: none
-};
 
 // Writes a run to one HDF5 file: /time plus one dataset per output channel, grouped by
 // component (/muscle/force, ...), each with a `units` attribute; the members of a bundle share
@@ -30,7 +19,10 @@ struct RecordMetadata {
 // attribute naming the columns, and their fixed facts (/b/centre_x) a value per member; /inputs
 // describes every prescribed signal; root attributes carry the version, git commit, resolved
 // config, seed and solver statistics. Datasets are chunked (and, if asked, shuffled and
-// deflated) and written chunk by chunk, so memory stays bounded however long the run. The file is
+// deflated) and written chunk by chunk, so memory stays bounded however long the run. The file
+// is opened at once (an unwritable path fails here, before the run); the rest of the writing
+// (attributes, datasets, /inputs, the samples) is done by a thread of the recorder's own while
+// the run integrates, at most two buffers behind. The file is
 // written as
 // "<out>.partial" and renamed to <out> only when complete; a failed run is kept as "<out
 // stem>.failed.h5" with status = "failed" and the reason.
@@ -43,8 +35,10 @@ class Hdf5Recorder final : public OutputSink {
   Hdf5Recorder(const Hdf5Recorder&) = delete;
   Hdf5Recorder& operator=(const Hdf5Recorder&) = delete;
 
+  // Buffers the sample; full buffers go to the writer. Throws std::runtime_error if writing
+  // failed.
   void record(double time, std::span<const double> signals) override;
-  // Flushes, writes the statistics, closes and renames to the final path.
+  // Writes what is buffered, the statistics, closes and renames to the final path.
   void finish(const SolverStatistics& statistics);
   // Keeps what was written as the failed file; returns its path.
   std::string fail(const std::string& reason, const SolverStatistics& statistics);
@@ -52,23 +46,17 @@ class Hdf5Recorder final : public OutputSink {
   static std::string failed_path(const std::string& path);
 
  private:
-  struct File;
-  void write_inputs(const System& system, const Context& context);
-  void write_member_properties(const System& system);
-  void flush();
+  void hand_over();  // the full buffers to the writer
   void close_with(const std::string& status, const std::string& reason,
                   const SolverStatistics& statistics);
 
   std::string path_;
-  std::unique_ptr<File> file_;
-  std::size_t chunk_samples_;
-  int compression_level_;
   static constexpr std::size_t kBufferedValues = std::size_t{1} << 20;
   std::vector<std::vector<int>> columns_;     // per dataset, its signals ([0], time: none)
   std::vector<std::vector<double>> buffers_;  // per dataset, rows of its columns ([0] is time)
   std::size_t flush_rows_ = 1;
-  std::size_t written_ = 0;
   bool closed_ = false;
+  std::unique_ptr<RecordWriter> writer_;  // its own thread: the file, the datasets, the writes
 };
 
 }  // namespace tcpmsim
