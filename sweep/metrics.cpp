@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "analysis/control_tasks.h"
 #include "analysis/statistics.h"
@@ -33,6 +34,13 @@ MetricKind kind_named(const std::string& name) {
     if (name == entry.name) return entry.kind;
   }
   return MetricKind::final_value;  // unreachable: the name was read as a choice of these
+}
+
+// A time for a message: "400", "3756.2".
+std::string seconds_text(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", seconds);
+  return text;
 }
 
 const ChannelInfo* recorded_channel(const System& system, const std::string& name) {
@@ -200,9 +208,13 @@ MetricSpec read_metric(const ConfigNode& node, const std::string& scenario_name,
   }
   metric.from = node.quantity_or("from", "s", 0.0, ValueCheck::non_negative());
   metric.to = node.quantity_or("to", "s", duration, ValueCheck::positive());
-  if (metric.to <= metric.from) node.at("to").fail("the window must end after it starts ('from')");
+  if (metric.to <= metric.from) {
+    if (node.has("to")) node.at("to").fail("the window must end after it starts ('from')");
+    node.at("from").fail("the window starts after the scenario ends (" + seconds_text(duration) +
+                         " s)");
+  }
   if (metric.to > duration + kTimeSlack)
-    node.at("to").fail("the window ends after the scenario does (" + std::to_string(duration) +
+    node.at("to").fail("the window ends after the scenario does (" + seconds_text(duration) +
                        " s)");
   if (metric.kind == MetricKind::rise_time) {
     if (node.has("reference"))
@@ -231,8 +243,8 @@ MetricSpec read_metric(const ConfigNode& node, const std::string& scenario_name,
       node.at("reference").fail("a bandwidth needs a stepped_sine_sweep reference");
     if (metric.kind == MetricKind::bandwidth && sweep->end_time() > metric.to + kTimeSlack)
       node.at("reference")
-          .fail("the sweep ends at " + std::to_string(sweep->end_time()) +
-                " s, after the scenario does (" + std::to_string(metric.to) + " s)");
+          .fail("the sweep ends at " + seconds_text(sweep->end_time()) +
+                " s, after the scenario does (" + seconds_text(metric.to) + " s)");
   }
   return metric;
 }

@@ -26,6 +26,23 @@ std::string number_text(double value) {
   return buffer;
 }
 
+// A scenario that fails to load under the sweep's `set:` is reported at the setting that made
+// it fail (the error names that --set), or at `set:` as a whole when the scenario file has no
+// line to blame; an error of the scenario file itself stands as it is.
+void blame_set(const ConfigNode& root, const std::string& scenario, const ConfigError& error) {
+  const auto set = root.find("set");
+  if (!set) return;
+  const std::string problem = "scenario '" + scenario + "' does not take it: " +
+                              (error.key_path().empty() ? "" : error.key_path() + ": ") +
+                              error.problem();
+  for (const auto& element : set->elements()) {
+    if (!error.location().origin.empty() &&
+        error.location().origin.find(element.as_text()) != std::string::npos)
+      element.fail(problem);
+  }
+  if (error.location().line == 0) set->fail(problem);
+}
+
 std::vector<SweepScenario> read_scenarios(const ConfigNode& root, const std::string& file,
                                           const std::vector<std::string>& overrides,
                                           const std::shared_ptr<const UnitSystem>& units) {
@@ -43,7 +60,12 @@ std::vector<SweepScenario> read_scenarios(const ConfigNode& root, const std::str
     const auto path = (directory / node.as_text()).lexically_normal().string();
     if (!std::filesystem::is_regular_file(path)) node.fail("no scenario file '" + path + "'");
     SweepScenario entry{name, path, overrides, nullptr};
-    entry.scenario = std::make_shared<const Scenario>(load_scenario(path, overrides, units));
+    try {
+      entry.scenario = std::make_shared<const Scenario>(load_scenario(path, overrides, units));
+    } catch (const ConfigError& error) {
+      blame_set(root, name, error);
+      throw;
+    }
     scenarios.push_back(std::move(entry));
   }
   return scenarios;

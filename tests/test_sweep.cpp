@@ -189,6 +189,16 @@ TEST_CASE("a bad sweep file gets one located error before any run", "[sweep]") {
   CHECK_THAT(sweep_error(head + "metrics:\n  - {name: r, type: rise_time, "
                                 "channel: muscle/temperature}\n"),
              Catch::Contains("an open-loop rise time needs 'from'"));
+  CHECK_THAT(sweep_error(head + "metrics:\n  - {name: m, type: maximum, "
+                                "channel: muscle/temperature, from: 500 s}\n"),
+             Catch::Contains("metrics[0].from: the window starts after the scenario ends (400 s)"));
+  // A `set:` entry the scenario refuses is blamed where the sweep file says it.
+  CHECK_THAT(
+      sweep_error(head + "set: ['solver.rtol=-1']\n"),
+      Catch::Contains("sweep.yaml:3:7: error: set[0]: scenario 'scenario' does not take it"));
+  CHECK_THAT(sweep_error(head + "set: ['nonsense.key=3']\n"),
+             Catch::Contains("sweep.yaml:3:6: error: set: scenario 'scenario' does not take it: "
+                             "nonsense: unknown key 'nonsense'"));
 }
 
 TEST_CASE("a structural axis builds the scenario again for each of its values", "[sweep]") {
