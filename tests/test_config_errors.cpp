@@ -82,6 +82,20 @@ TEST_CASE("A quantity in the wrong unit is rejected with both units") {
         "unit");
 }
 
+TEST_CASE("A unit is never taken for its reciprocal") {
+  // udunits alone would invert these: 16 s as a rate of 1/16 Hz, mm/N as a stiffness.
+  CHECK(error_of(replaced(kValid, "rate: 10 Hz", "rate: 16 s")) ==
+        "test.yaml:2:16: error: output.rate: wrong unit in '16 s': unit 's' cannot be converted "
+        "to 'Hz'");
+  CHECK(error_of(replaced(kValid, "duration: 10 s", "duration: 400 Hz")) ==
+        "test.yaml:1:34: error: scenario.duration: wrong unit in '400 Hz': unit 'Hz' cannot be "
+        "converted to 's'");
+  CHECK(error_of(replaced(kValid, "k1: 10 N/m", "k1: 92.6 mm/N")) ==
+        "test.yaml:11:9: error: muscle.mechanics.k1: wrong unit in '92.6 mm/N': unit 'mm/N' cannot "
+        "be converted to 'N/m'");
+  CHECK_NOTHROW(scenario_from_text(replaced(kValid, "rate: 10 Hz", "rate: 10 1/s")));
+}
+
 TEST_CASE("A dimensional quantity without a unit is rejected") {
   CHECK(error_of(replaced(kValid, "heat_capacity: 0.5 J/K", "heat_capacity: 0.5")) ==
         "test.yaml:6:20: error: muscle.thermal.heat_capacity: '0.5' has no unit; expected a "

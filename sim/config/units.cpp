@@ -21,6 +21,15 @@ UnitPointer parse(ut_system* system, std::string_view text) {
   const std::string spelled = text.empty() ? std::string("1") : std::string(text);
   return UnitPointer(ut_parse(system, spelled.c_str(), UT_UTF8));
 }
+
+// Whether `source` and `target` measure the same quantity. udunits converts a unit into its
+// reciprocal too (ut_are_convertible("s", "Hz") holds), so "16 s" would be read as a rate of
+// 1/16 Hz; the quotient of the two units must be dimensionless instead.
+bool same_dimension(ut_system* system, const ut_unit* source, const ut_unit* target) {
+  if (ut_are_convertible(source, target) == 0) return false;
+  UnitPointer quotient(ut_divide(source, target));
+  return quotient && ut_are_convertible(quotient.get(), ut_get_dimensionless_unit_one(system)) != 0;
+}
 }  // namespace
 
 UnitSystem::UnitSystem() : handle_(std::make_unique<Handle>()) {
@@ -39,7 +48,7 @@ UnitSystem::~UnitSystem() = default;
 bool UnitSystem::convertible(std::string_view from, std::string_view to) const {
   UnitPointer source = parse(handle_->system, from);
   UnitPointer target = parse(handle_->system, to);
-  return source && target && ut_are_convertible(source.get(), target.get()) != 0;
+  return source && target && same_dimension(handle_->system, source.get(), target.get());
 }
 
 double UnitSystem::convert(double value, std::string_view from, std::string_view to) const {
@@ -47,7 +56,9 @@ double UnitSystem::convert(double value, std::string_view from, std::string_view
   if (!source) throw UnitError("'" + std::string(from) + "' is not a unit");
   UnitPointer target = parse(handle_->system, to);
   if (!target) throw UnitError("internal: '" + std::string(to) + "' is not a unit");
-  cv_converter* converter = ut_get_converter(source.get(), target.get());
+  cv_converter* converter = same_dimension(handle_->system, source.get(), target.get())
+                                ? ut_get_converter(source.get(), target.get())
+                                : nullptr;
   if (!converter) {
     throw UnitError("unit '" + std::string(from) + "' cannot be converted to '" + std::string(to) +
                     "'");

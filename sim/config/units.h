@@ -24,7 +24,8 @@ class UnitSystem {
   UnitSystem& operator=(const UnitSystem&) = delete;
 
   // Converts `value` expressed in `from` into `to`. Throws UnitError if `from` is not a unit
-  // udunits knows or is not convertible to `to`.
+  // udunits knows or does not measure the same quantity as `to`: a unit and its reciprocal
+  // (s and Hz, mm/N and N/mm) are not convertible here, although udunits would invert them.
   double convert(double value, std::string_view from, std::string_view to) const;
   bool convertible(std::string_view from, std::string_view to) const;
 
