@@ -1,5 +1,6 @@
 #include "signals/signal_kinds.h"
 
+#include "signals/data_signal.h"
 #include "signals/signal_readers.h"
 
 namespace tcpmsim {
@@ -24,6 +25,11 @@ load: {type: deflection, deflection: 20 mm}
           "drive.power"};
 }
 
+KindExample with_file(KindExample example, std::string name, std::string content) {
+  example.files.emplace_back(std::move(name), std::move(content));
+  return example;
+}
+
 void add(KindRegistry& kinds, const char* name, const char* summary, SignalBuilder read,
          std::vector<KindExample> examples) {
   kinds.add({kSignalCategory, name, summary, std::move(examples), std::move(read)});
@@ -46,6 +52,17 @@ void register_signal_kinds(KindRegistry& kinds) {
   add(kinds, "piecewise_linear", "straight lines between (times, values), constant outside",
       read::piecewise_linear,
       {as_power("{type: piecewise_linear, times: [0 s, 4 s, 8 s], values: [0 W, 2 W, 1 W]}")});
+  add(kinds, "data",
+      "a measured channel replayed: a column of a CSV file (name[unit] headings) or a tcpmsim "
+      "record, its samples held or joined by lines; relative files are the scenario's "
+      "neighbours",
+      read_data_signal,
+      {with_file(as_power("{type: data, file: bench.csv, channel: power, interpolation: hold}"),
+                 "bench.csv",
+                 "# a bench recording: power and load-cell force\n"
+                 "time[s],power[mW],force[mN]\n"
+                 "0,0,107.0\n2,1500,107.2\n4,1500,118.9\n6,500,124.0\n8,500,121.3\n"
+                 "10,500,119.5\n")});
   add(kinds, "staircase",
       "levels held for `hold`, moving between them at `rate` (a testing machine's program)",
       read::staircase,

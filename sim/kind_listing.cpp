@@ -1,5 +1,10 @@
 #include "sim/kind_listing.h"
 
+#include <stdlib.h>
+
+#include <filesystem>
+#include <fstream>
+
 #include <map>
 #include <sstream>
 
@@ -45,12 +50,32 @@ std::string row(const KindKey& key, bool markdown) {
 
 }  // namespace
 
+ExampleScenario::ExampleScenario(const KindExample& example, const std::string& name)
+    : name_(name) {
+  if (example.files.empty()) return;
+  std::string pattern = (std::filesystem::temp_directory_path() / "tcpmsim-example-XXXXXX");
+  if (!mkdtemp(pattern.data())) {
+    throw std::runtime_error("cannot make a temporary directory for an example's files");
+  }
+  directory_ = pattern;
+  for (const auto& [file, content] : example.files) {
+    std::ofstream(std::filesystem::path(directory_) / file) << content;
+  }
+  name_ = (std::filesystem::path(directory_) / name).string();
+}
+
+ExampleScenario::~ExampleScenario() {
+  std::error_code ignored;
+  if (!directory_.empty()) std::filesystem::remove_all(directory_, ignored);
+}
+
 std::vector<KindKey> kind_keys(const KindRegistry& kinds, const Kind& kind,
                                std::shared_ptr<const UnitSystem> units) {
   std::vector<KindKey> keys;
   std::map<std::string, std::size_t> seen;
   for (const auto& example : kind.examples) {
-    const ConfigNode root = ConfigNode::load_text(example.text, kind.name + " example", {}, units);
+    const ExampleScenario where(example, kind.name + "_example.yaml");
+    const ConfigNode root = ConfigNode::load_text(example.text, where.name(), {}, units);
     build_scenario(root, kinds);
     const auto reads = root.reads();
     std::vector<std::string> parts;  // sections below this one that another kind reads

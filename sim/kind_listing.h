@@ -23,6 +23,21 @@ struct KindKey {
   std::string fallback;
   bool optional = false;
 };
+// Where an example's scenario is read from: `name` as given, or, when the example has files,
+// a file of that name in a new temporary directory that holds them (removed with this).
+class ExampleScenario {
+ public:
+  ExampleScenario(const KindExample& example, const std::string& name);
+  ~ExampleScenario();
+  ExampleScenario(const ExampleScenario&) = delete;
+  ExampleScenario& operator=(const ExampleScenario&) = delete;
+  const std::string& name() const { return name_; }
+
+ private:
+  std::string directory_;
+  std::string name_;
+};
+
 std::vector<KindKey> kind_keys(const KindRegistry& kinds, const Kind& kind,
                                std::shared_ptr<const UnitSystem> units);
 

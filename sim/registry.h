@@ -37,6 +37,8 @@ struct Category {
 struct KindExample {
   std::string text;
   std::string node;
+  // Files beside the scenario, (name, content): the data file a replayed signal reads.
+  std::vector<std::pair<std::string, std::string>> files = {};
 };
 
 // A kind of component (or signal) a scenario may name, with what builds it. The builder's

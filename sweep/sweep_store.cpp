@@ -32,14 +32,6 @@ struct Part {
   double wall_seconds = 0.0;
 };
 
-std::vector<double> read_doubles(const H5::H5File& file, const std::string& name) {
-  H5::DataSet set = file.openDataSet(name);
-  const H5::DataSpace space = set.getSpace();
-  std::vector<double> values(static_cast<std::size_t>(space.getSimpleExtentNpoints()));
-  if (!values.empty()) set.read(values.data(), H5::PredType::NATIVE_DOUBLE);
-  return values;
-}
-
 std::string read_text(const H5::H5File& file, const std::string& name) {
   H5::DataSet set = file.openDataSet(name);
   std::vector<std::string> values;
@@ -48,14 +40,6 @@ std::string read_text(const H5::H5File& file, const std::string& name) {
   set.read(&text, type);
   std::string value = text != nullptr ? text : "";
   H5::DataSet::vlenReclaim(&text, type, H5::DataSpace(H5S_SCALAR));
-  return value;
-}
-
-std::string units_of(const H5::DataSet& set) {
-  if (!set.attrExists("units")) return "";
-  H5::Attribute attribute = set.openAttribute("units");
-  std::string value;
-  attribute.read(attribute.getStrType(), value);
   return value;
 }
 

@@ -68,12 +68,12 @@ TEST_CASE("Every kind of the standard registry builds and runs from its examples
       int naming = 0;  // examples whose section names this kind (others show a section it reads)
       for (const auto& example : kind->examples) {
         INFO(example.node);
+        const ExampleScenario where(example, kind->name + "_example.yaml");
         const ConfigNode root =
-            ConfigNode::load_text(example.text, kind->name + " example", {}, shared_units());
+            ConfigNode::load_text(example.text, where.name(), {}, shared_units());
         naming += kind_named(kinds, category, section_at(root, example.node)) == kind->name;
-        const Scenario scenario =
-            load_scenario_text(example.text, kind->name + " example", {"scenario.duration=0.01 s"},
-                               shared_units(), kinds);
+        const Scenario scenario = load_scenario_text(
+            example.text, where.name(), {"scenario.duration=0.01 s"}, shared_units(), kinds);
         Context context = scenario.make_context();
         double* state = context.state().data();
         scenario.system->initialize(context, 0.0, state);

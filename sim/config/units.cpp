@@ -51,7 +51,8 @@ bool UnitSystem::convertible(std::string_view from, std::string_view to) const {
   return source && target && same_dimension(handle_->system, source.get(), target.get());
 }
 
-double UnitSystem::convert(double value, std::string_view from, std::string_view to) const {
+std::function<double(double)> UnitSystem::converter(std::string_view from,
+                                                    std::string_view to) const {
   UnitPointer source = parse(handle_->system, from);
   if (!source) throw UnitError("'" + std::string(from) + "' is not a unit");
   UnitPointer target = parse(handle_->system, to);
@@ -63,9 +64,12 @@ double UnitSystem::convert(double value, std::string_view from, std::string_view
     throw UnitError("unit '" + std::string(from) + "' cannot be converted to '" + std::string(to) +
                     "'");
   }
-  const double converted = cv_convert_double(converter, value);
-  cv_free(converter);
-  return converted;
+  std::shared_ptr<cv_converter> owned(converter, cv_free);
+  return [owned](double value) { return cv_convert_double(owned.get(), value); };
+}
+
+double UnitSystem::convert(double value, std::string_view from, std::string_view to) const {
+  return converter(from, to)(value);
 }
 
 }  // namespace tcpmsim

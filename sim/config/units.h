@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -28,6 +29,9 @@ class UnitSystem {
   // (s and Hz, mm/N and N/mm) are not convertible here, although udunits would invert them.
   double convert(double value, std::string_view from, std::string_view to) const;
   bool convertible(std::string_view from, std::string_view to) const;
+  // The conversion from `from` into `to` as a function, parsed once, for converting many
+  // values (a data file's column). Throws UnitError as convert does.
+  std::function<double(double)> converter(std::string_view from, std::string_view to) const;
 
  private:
   struct Handle;

@@ -85,8 +85,14 @@ double DelimitedFile::number(const TextRow& row, std::size_t field,
   const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
   const bool signs_doubled =
       text.text.size() > 1 && text.text[0] == '+' && (text.text[1] == '-' || text.text[1] == '+');
-  if (digits.empty() || error != std::errc() || end != digits.data() + digits.size() ||
-      signs_doubled || !std::isfinite(value)) {
+  const bool parsed = !digits.empty() && error == std::errc() &&
+                      end == digits.data() + digits.size() && !signs_doubled;
+  if (parsed && !std::isfinite(value)) {
+    fail(row.line, text.column,
+         "field " + std::to_string(field + 1) + " (" + std::string(meaning) +
+             "): expected a finite number, got '" + text.text + "'");
+  }
+  if (!parsed) {
     fail(row.line, text.column,
          "field " + std::to_string(field + 1) + " (" + std::string(meaning) +
              "): expected a number, got '" + text.text + "'");

@@ -50,4 +50,20 @@ void write_text_array_attribute(H5::H5Object& object, const std::string& name,
   attribute.write(type, c_strings(values).data());
 }
 
+std::vector<double> read_doubles(const H5::H5Location& location, const std::string& name) {
+  H5::DataSet set = location.openDataSet(name);
+  const H5::DataSpace space = set.getSpace();
+  std::vector<double> values(static_cast<std::size_t>(space.getSimpleExtentNpoints()));
+  if (!values.empty()) set.read(values.data(), H5::PredType::NATIVE_DOUBLE);
+  return values;
+}
+
+std::string units_of(const H5::H5Object& object) {
+  if (!object.attrExists("units")) return "";
+  H5::Attribute attribute = object.openAttribute("units");
+  std::string value;
+  attribute.read(attribute.getStrType(), value);
+  return value;
+}
+
 }  // namespace tcpmsim

@@ -33,4 +33,9 @@ void write_text_attribute(H5::H5Object& object, const std::string& name, const s
 void write_text_array_attribute(H5::H5Object& object, const std::string& name,
                                 const std::vector<std::string>& values);
 
+// A dataset's values as doubles, whatever its shape (row-major).
+std::vector<double> read_doubles(const H5::H5Location& location, const std::string& name);
+// A dataset's "units" attribute, or empty.
+std::string units_of(const H5::H5Object& object);
+
 }  // namespace tcpmsim
