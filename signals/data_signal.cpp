@@ -1,7 +1,7 @@
 #include "signals/data_signal.h"
 
 #include <algorithm>
-#include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 #include "sim/io/measured_data.h"
@@ -31,15 +31,6 @@ std::string coverage_problem(const DataSignal& signal, double first, double orig
            seconds_text(duration);
   }
   return "";
-}
-
-// The data file's path: relative paths are the scenario file's neighbours (a --set's, the
-// working directory's).
-std::string data_path(const ConfigNode& file_node) {
-  const std::filesystem::path file(file_node.as_text());
-  const SourceLocation location = file_node.location();
-  if (file.is_absolute() || !location.origin.empty() || location.file.empty()) return file;
-  return (std::filesystem::path(location.file).parent_path() / file).string();
 }
 
 }  // namespace
@@ -112,8 +103,16 @@ double DataSignal::covered_until() const {
 std::unique_ptr<Signal> read_data_signal(const ConfigNode& node, std::string_view si_unit,
                                          const SignalContext& context) {
   node.declare({"type", "file", "channel", "interpolation", "origin"});
-  const ConfigNode file_node = node.at("file");
-  const MeasuredData data = read_measured_data(data_path(file_node), node.units());
+  // A file of its own, or the scenario's measurement.
+  const std::optional<ConfigNode> own_file = node.find("file");
+  if (!own_file && context.measurement_file.empty()) {
+    node.fail(
+        "expected a file to replay: 'file', or the scenario's measurement.file (fit and "
+        "discover set it to their --data; run takes --set measurement.file=FILE)");
+  }
+  const ConfigNode& located = own_file ? *own_file : node;
+  const MeasuredData data = read_measured_data(
+      own_file ? file_named_by(*own_file) : context.measurement_file, node.units());
   const ConfigNode channel_node = node.at("channel");
   const std::string name = channel_node.as_text();
   if (name == "time") channel_node.fail("time is the data's clock, not a channel to replay");
@@ -135,7 +134,7 @@ std::unique_ptr<Signal> read_data_signal(const ConfigNode& node, std::string_vie
   const double first = samples->times.front();
   auto signal = std::make_unique<DataSignal>(samples, interpolation, origin);
   const std::string problem = coverage_problem(*signal, first, origin, context.duration);
-  if (!problem.empty()) file_node.fail(problem);
+  if (!problem.empty()) located.fail(problem);
 
   auto recipe = std::make_shared<SignalRecipe>();
   recipe->parameters.push_back({node.parameter_path("origin"), "s", origin, {}, {}});

@@ -24,7 +24,7 @@ int read_compression(const ConfigNode& output) {
 
 ScenarioSettings read_settings(const ConfigNode& root, const KindRegistry& kinds) {
   ScenarioSettings settings;
-  root.declare({"scenario", "output", "solver"});
+  root.declare({"scenario", "output", "solver", "measurement"});
   for (const Category& category : kinds.categories()) {
     if (!category.top_level()) continue;
     root.declare({category.name, category.plural});
@@ -50,6 +50,10 @@ ScenarioSettings read_settings(const ConfigNode& root, const KindRegistry& kinds
                             std::to_string(settings.duration) + " s)");
   }
   settings.compression_level = read_compression(output);
+  if (const auto measurement = root.find("measurement")) {
+    measurement->declare({"file"});
+    settings.measurement_file = file_named_by(measurement->at("file"));
+  }
   return settings;
 }
 

@@ -26,6 +26,7 @@ struct ScenarioSettings {
   // The record's deflate level, 0 for none (output.compression): zlib at level 1 costs about
   // twice the integration of a typical run, so records are uncompressed unless asked.
   int compression_level = 0;
+  std::string measurement_file;  // measurement.file, found beside the scenario; empty: none
 };
 
 // An instance a scenario declares: a section of a top-level category, its name and its kind.
@@ -47,7 +48,9 @@ class ScenarioBuilder {
   const KindRegistry& kinds() const { return kinds_; }
   const ScenarioSettings& settings() const { return settings_; }
   SystemBuilder& system() { return system_; }
-  SignalContext signals() const { return {settings_.seed, settings_.duration, &kinds_}; }
+  SignalContext signals() const {
+    return {settings_.seed, settings_.duration, &kinds_, settings_.measurement_file};
+  }
   // A signal of the scenario, its values in `si_unit`.
   std::unique_ptr<Signal> signal(const ConfigNode& node, std::string_view si_unit) const;
 

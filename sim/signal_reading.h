@@ -16,6 +16,9 @@ struct SignalContext {
   std::uint64_t seed = 0;  // the scenario seed; each random signal draws its own stream
   double duration = 0.0;   // the time the signal is meant to cover [s]
   const KindRegistry* kinds = nullptr;  // where the signal kinds are registered
+  // The scenario's measurement (measurement.file, found beside the scenario; fit and discover
+  // set it to their --data): what a data signal without a file of its own replays. Empty: none.
+  std::string measurement_file;
 };
 
 // Reads a signal of one kind from its section (values in `si_unit`). The kind registered as

@@ -240,12 +240,37 @@ TEST_CASE("A data signal's file, channel and coverage are checked at the scenari
               ":14:48: error: drive.power.file: the data start at 0 s, after origin -1 s "
               "(the data time of the scenario's t = 0)");
   }
+  SECTION("a data signal without a file, in a scenario without a measurement") {
+    CHECK(scenario_error(file("{type: data, channel: power}")) ==
+          scenario +
+              ":14:29: error: drive.power: expected a file to replay: 'file', or the "
+              "scenario's measurement.file (fit and discover set it to their --data; run "
+              "takes --set measurement.file=FILE)");
+  }
   SECTION("an error inside the data file is located there") {
     write(directory / "broken.csv", "time[s],power[W]\n0,1\n1,x\n");
     CHECK(scenario_error(file("{type: data, file: broken.csv, channel: power}")) ==
           (directory / "broken.csv").string() +
               ":3:3: error: field 2 (power [W]): expected a number, got 'x'");
   }
+}
+
+TEST_CASE("Data signals without a file of their own replay the scenario's measurement") {
+  const auto directory = fresh_directory("measurement_file");
+  write(directory / "bench.csv", "time[s],power[W]\n0,0\n10,2\n30,0.5\n60,1.5\n100,1.5\n");
+  write(directory / "other.csv", "time[s],power[W]\n0,1\n100,1\n");
+  const std::string own =
+      replay_scenario(directory, "{type: data, file: bench.csv, channel: power}");
+  const Trace expected = simulate(load_scenario(own, {}, shared_units()));
+  const std::string shared = replay_scenario(directory, "{type: data, channel: power}");
+  // measurement.file is found beside the scenario when written in it...
+  write(shared, "measurement: {file: bench.csv}\n" + read_text_file(shared));
+  CHECK(bitwise_equal(simulate(load_scenario(shared, {}, shared_units()))["muscle/temperature"],
+                      expected["muscle/temperature"]));
+  // ...and from the working directory when set on the command line.
+  const Trace other = simulate(load_scenario(
+      shared, {"measurement.file=" + (directory / "other.csv").string()}, shared_units()));
+  CHECK(other["drive/power"].front() == 1.0);
 }
 
 TEST_CASE("A tcpmsim record stands in for a measurement: channels by path, in SI, unchanged") {
@@ -270,6 +295,11 @@ TEST_CASE("A tcpmsim record stands in for a measurement: channels by path, in SI
   }
   CHECK(data.find("muscle.temperature")->unit == "K");
   CHECK(data.find("inputs.drive.power") == nullptr);
+  // As the bench measures: the drive's power, the testing machine's deflection and load cell.
+  CHECK(bitwise_equal(data.find("power")->values, trace["drive/power"]));
+  CHECK(bitwise_equal(data.find("deflection")->values, trace["load/deflection"]));
+  CHECK(bitwise_equal(data.find("force")->values, trace["load/force"]));
+  CHECK(bitwise_equal(data.find("temperature")->values, trace["muscle/temperature"]));
 
   // Its power replayed with a zero-order hold is the step signal through the recorded samples:
   // the same values and breakpoints, so the same run bit for bit.

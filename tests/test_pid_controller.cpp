@@ -288,8 +288,8 @@ TEST_CASE("The controller reads its gains and limits with units") {
   auto load = [](const std::string& yaml) {
     const ConfigNode root = ConfigNode::load_text(yaml, "c.yaml", {}, shared_units());
     const KindRegistry kinds = standard_kinds();
-    auto controller =
-        PidController::from_config("controller", root.at("controller"), 0.05, {1, 100.0, &kinds});
+    auto controller = PidController::from_config("controller", root.at("controller"), 0.05,
+                                                 {1, 100.0, &kinds, {}});
     root.reject_unknown_keys();
     return controller;
   };

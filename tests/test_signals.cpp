@@ -24,7 +24,7 @@ std::unique_ptr<Signal> signal_from(const std::string& yaml, std::string_view un
   const ConfigNode root =
       ConfigNode::load_text("signal: " + yaml, "signal.yaml", {}, shared_units());
   const KindRegistry kinds = standard_kinds();
-  auto signal = read_signal(root.at("signal"), unit, {seed, duration, &kinds});
+  auto signal = read_signal(root.at("signal"), unit, {seed, duration, &kinds, {}});
   root.reject_unknown_keys();
   return signal;
 }

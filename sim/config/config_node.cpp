@@ -1,5 +1,7 @@
 #include "sim/config/config_node.h"
 
+#include <filesystem>
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -646,6 +648,13 @@ std::string ConfigNode::resolved_yaml() const {
   YAML::Emitter emitter;
   emitter << document_->resolved;
   return emitter.c_str();
+}
+
+std::string file_named_by(const ConfigNode& node) {
+  const std::filesystem::path file(node.as_text());
+  const SourceLocation location = node.location();
+  if (file.is_absolute() || !location.origin.empty() || location.file.empty()) return file;
+  return (std::filesystem::path(location.file).parent_path() / file).string();
 }
 
 }  // namespace tcpmsim

@@ -154,6 +154,10 @@ class ConfigNode {
 std::string expand_instance_path(const YAML::Node& root, const std::string& path,
                                  const std::vector<std::string>& instance_sections);
 
+// The file a scenario's text value names (a data file): a relative path is taken from the
+// scenario file's directory, or from the working directory for a --set.
+std::string file_named_by(const ConfigNode& node);
+
 // The whole of a text file; a ConfigError located at the file if it cannot be read.
 std::string read_text_file(const std::string& file);
 

@@ -70,7 +70,9 @@ MeasuredData parse_measured_csv(const std::string& text, const std::string& name
                                 const UnitSystem& units);
 
 // A tcpmsim record standing in for a measurement: /time and every 1-D dataset of as many
-// samples, named by its path with '.' ("load.force", "muscle.temperature").
+// samples, named by its path with '.' ("load.force", "muscle.temperature"). Each quantity's
+// plain name is also the bench's instrument for it: the drive's channel, else the load's (the
+// testing machine and load cell), else the muscle's ("force" is "load.force").
 MeasuredData read_measured_record(const std::string& path);
 
 // A record if the file is HDF5, else CSV.

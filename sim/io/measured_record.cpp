@@ -40,6 +40,25 @@ void collect(const H5::H5File& file, const std::string& group, const std::string
   }
 }
 
+// A single-muscle record read as the bench would have measured it: each quantity's plain name
+// ("force") is the instrument's channel: the drive's, else the load's (the testing machine and
+// its load cell), else the muscle's.
+void add_bench_names(std::vector<MeasuredChannel>& channels) {
+  const std::size_t recorded = channels.size();
+  for (const auto& quantity : measured_quantities()) {
+    for (const char* instrument : {"drive.", "load.", "muscle."}) {
+      const std::string path = instrument + std::string(quantity.name);
+      const auto found = std::find_if(channels.begin(), channels.begin() + recorded,
+                                      [&](const auto& channel) { return channel.name == path; });
+      if (found == channels.begin() + recorded) continue;
+      MeasuredChannel named = *found;
+      named.name = quantity.name;
+      channels.push_back(std::move(named));
+      break;
+    }
+  }
+}
+
 }  // namespace
 
 MeasuredData read_measured_record(const std::string& path) {
@@ -57,6 +76,7 @@ MeasuredData read_measured_record(const std::string& path) {
     }
     time = read_doubles(file, "/time");
     collect(file, "", "", time.size(), channels);
+    add_bench_names(channels);
   } catch (const H5::Exception& error) {
     fail(path, "cannot read the HDF5 record: " + error.getDetailMsg());
   }
