@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <thread>
 
 #include <unistd.h>
 
@@ -12,6 +13,7 @@
 #include "analysis/control_tasks_command.h"
 #include "analysis/spring_forces_command.h"
 #include "cli/progress.h"
+#include "identification/fit_report.h"
 #include "kinds/standard_kinds.h"
 #include "sim/config/config_error.h"
 #include "sim/kind_listing.h"
@@ -46,6 +48,9 @@ struct Options {
   std::vector<std::string> configs;  // run: one or more scenario files
   std::string output_directory = "results";
   int jobs = 1;
+  std::string data;           // fit: the measurement, in place of the fit file's
+  std::string fit_directory;  // fit: where its outputs go
+  int fit_jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 };
 
 tcpmsim::Scenario load(const Options& options) {
@@ -201,6 +206,27 @@ int sweep(const Options& options) {
   }
   // Complete either way; a run that failed is in the summary with its message.
   return outcome.failed > 0 ? kSimulationFailed : kSuccess;
+}
+
+// Output-error identification: a model's parameters from a measurement (identification/).
+int fit(const Options& options) {
+  auto units = std::make_shared<tcpmsim::UnitSystem>();
+  const tcpmsim::fit::FitSpec spec = tcpmsim::fit::load_fit(options.config, options.overrides,
+                                                            options.data, options.fit_jobs, units);
+  const std::string directory =
+      options.fit_directory.empty()
+          ? "results/fit_" + std::filesystem::path(spec.model_file).stem().string()
+          : options.fit_directory;
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
+  if (error) throw std::runtime_error("cannot write " + directory + ": " + error.message());
+  const tcpmsim::fit::FitResult result = tcpmsim::fit::fit_model(spec.problem, spec.settings);
+  const auto written = tcpmsim::fit::write_fit_outputs(directory, spec, result);
+  if (!options.quiet) {
+    std::cout << tcpmsim::fit::fit_summary(spec, result);
+    for (const auto& file : written) std::cout << "wrote " << file << "\n";
+  }
+  return kSuccess;
 }
 
 int report_errors(int (*command)(const Options&), const Options& options);
@@ -369,6 +395,24 @@ int main(int argc, char** argv) {
                           "Finish an interrupted sweep: redo only the runs not done");
   sweep_command->add_flag("-q,--quiet", options.quiet, "No progress or summary");
 
+  CLI::App* fit_command = app.add_subcommand(
+      "fit", "Fit a model's parameters to a measurement (output error, Levenberg-Marquardt)");
+  fit_command->add_option("fit", options.config, "Fit file (YAML)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  fit_command->add_option("--data", options.data, "The measurement (CSV or a tcpmsim record)")
+      ->check(CLI::ExistingFile);
+  fit_command->add_option("--set", options.overrides, "Override a value of the fit file")
+      ->type_name("KEY.PATH=VALUE");
+  fit_command->add_option("--out", options.fit_directory,
+                          "Directory for fit.json, fitted.yaml, fit.h5 (default: "
+                          "results/fit_<model>)");
+  fit_command
+      ->add_option("-j,--jobs", options.fit_jobs,
+                   "Simulations in parallel (threads; default: the hardware's)")
+      ->check(CLI::Range(1, 256));
+  fit_command->add_flag("-q,--quiet", options.quiet, "No summary");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -384,5 +428,6 @@ int main(int argc, char** argv) {
   if (spring_forces_command->parsed()) return guarded(spring_forces, options);
   if (control_tasks_command->parsed()) return guarded(control_tasks, options);
   if (sweep_command->parsed()) return guarded(sweep, options);
+  if (fit_command->parsed()) return guarded(fit, options);
   return guarded(validate, options);
 }

@@ -13,6 +13,8 @@ packages=(
   libcli11-dev                             # command line
   catch2                                   # tests (v2)
   libopenmpi-dev openmpi-bin               # sweeps on clusters: mpirun -n K tcpmsim sweep
+  libceres-dev                             # fit: Levenberg-Marquardt with bounds (Ceres Solver)
+  nlohmann-json3-dev                       # fit and discover reports as JSON
   python3 python3-h5py python3-numpy python3-matplotlib python3-scipy  # plots, benchmark
 )
 

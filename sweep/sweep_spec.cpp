@@ -12,23 +12,7 @@
 #include "sweep/sweep_design.h"
 
 namespace tcpmsim::sweep {
-namespace {
 
-// One axis as read: its values, or the indices of its texts for a structural axis.
-struct AxisValues {
-  Axis axis;
-  std::vector<double> values;
-};
-
-std::string number_text(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  return buffer;
-}
-
-// A scenario that fails to load under the sweep's `set:` is reported at the setting that made
-// it fail (the error names that --set), or at `set:` as a whole when the scenario file has no
-// line to blame; an error of the scenario file itself stands as it is.
 void blame_set(const ConfigNode& root, const std::string& scenario, const ConfigError& error) {
   const auto set = root.find("set");
   if (!set) return;
@@ -41,6 +25,28 @@ void blame_set(const ConfigNode& root, const std::string& scenario, const Config
       element.fail(problem);
   }
   if (error.location().line == 0) set->fail(problem);
+}
+
+std::vector<std::string> read_set(const ConfigNode& root) {
+  std::vector<std::string> overrides;
+  if (const auto set = root.find("set")) {
+    for (const auto& element : set->elements()) overrides.push_back(element.as_text());
+  }
+  return overrides;
+}
+
+namespace {
+
+// One axis as read: its values, or the indices of its texts for a structural axis.
+struct AxisValues {
+  Axis axis;
+  std::vector<double> values;
+};
+
+std::string number_text(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", value);
+  return buffer;
 }
 
 std::vector<SweepScenario> read_scenarios(const ConfigNode& root, const std::string& file,
@@ -69,14 +75,6 @@ std::vector<SweepScenario> read_scenarios(const ConfigNode& root, const std::str
     scenarios.push_back(std::move(entry));
   }
   return scenarios;
-}
-
-std::vector<std::string> read_set(const ConfigNode& root) {
-  std::vector<std::string> overrides;
-  if (const auto set = root.find("set")) {
-    for (const auto& element : set->elements()) overrides.push_back(element.as_text());
-  }
-  return overrides;
 }
 
 // The declaration of `path` in the scenarios that have it (nullptr in those that do not).

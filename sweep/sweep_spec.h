@@ -66,6 +66,13 @@ std::string summary_column(const std::string& name);
 
 // Reads `file` (overrides: --set on the sweep file itself). Scenario files are found relative
 // to the sweep file. Throws ConfigError located at the offending key.
+// A file's `set:` list: "path=value" overrides for the scenarios it names (a sweep's, a fit's).
+std::vector<std::string> read_set(const ConfigNode& root);
+// A scenario that fails to load under `set:` is reported at the setting that made it fail (the
+// error names that --set), or at `set:` as a whole when the scenario file has no line to blame;
+// an error of the scenario file itself stands as it is (returns).
+void blame_set(const ConfigNode& root, const std::string& scenario, const ConfigError& error);
+
 SweepSpec load_sweep(const std::string& file, const std::vector<std::string>& overrides,
                      std::shared_ptr<const UnitSystem> units);
 

@@ -6,6 +6,10 @@
 #include <cmath>
 #include <filesystem>
 
+#include <unistd.h>
+
+#include "identification/fit_spec.h"
+#include "sim/run.h"
 #include "sweep/sweep_spec.h"
 #include "tests/support/test_support.h"
 
@@ -20,13 +24,38 @@ bool is_sweep_file(const std::filesystem::path& path) {
   return YAML::LoadFile(path.string())["sweep"].IsDefined();
 }
 
-// The scenario files of configs/: not the spring geometries, not the sweep files.
+// A fit file (configs/discover/*_fit.yaml) names a model and a measurement.
+bool is_fit_file(const std::filesystem::path& path) {
+  return YAML::LoadFile(path.string())["model"].IsDefined();
+}
+
+// The chapter-7 protocol's record: the measurement that model scenarios (whose data signals
+// replay "the measurement") and fit files are run with here.
+std::string protocol_record() {
+  // One per test process: ctest runs cases in parallel processes.
+  const auto path = std::filesystem::temp_directory_path() / "tcpmsim_tests" /
+                    ("ch7_protocol_" + std::to_string(getpid()) + ".h5");
+  if (!std::filesystem::exists(path)) {
+    std::filesystem::create_directories(path.parent_path());
+    const Scenario protocol =
+        load_scenario(source_path("configs/discover/ch7_protocol.yaml"), {}, shared_units());
+    REQUIRE(run_scenario(protocol, path.string()).succeeded);
+  }
+  return path.string();
+}
+
+// Every scenario file runs with a measurement at hand: those that replay none ignore it.
+std::vector<std::string> with_measurement() {
+  return {"measurement.file=" + protocol_record()};
+}
+
+// The scenario files of configs/: not the spring geometries, the sweep or the fit files.
 std::vector<std::filesystem::path> scenario_files() {
   std::vector<std::filesystem::path> files;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(source_path("configs"))) {
     if (entry.path().extension() != ".yaml") continue;
     if (entry.path().parent_path().filename() == "springs") continue;  // geometry files
-    if (is_sweep_file(entry.path())) continue;
+    if (is_sweep_file(entry.path()) || is_fit_file(entry.path())) continue;
     files.push_back(entry.path());
   }
   std::sort(files.begin(), files.end());
@@ -40,7 +69,7 @@ TEST_CASE("Every file in configs/ runs to the end and samples at its output rate
   for (const auto& file : scenario_files()) {
     ++count;
     INFO(file.filename().string());
-    Scenario scenario = load_scenario(file.string(), {}, shared_units());
+    Scenario scenario = load_scenario(file.string(), with_measurement(), shared_units());
     const Trace trace = simulate(scenario);
     const auto expected = static_cast<std::size_t>(std::floor(
                               (scenario.settings.duration - scenario.settings.output_start) /
@@ -70,13 +99,27 @@ TEST_CASE("Every file in configs/ runs to the end and samples at its output rate
 TEST_CASE("In every scenario each component writes exactly its own outputs and derivatives") {
   for (const auto& file : scenario_files()) {
     INFO(file.filename().string());
-    Scenario scenario = load_scenario(file.string(), {}, shared_units());
+    Scenario scenario = load_scenario(file.string(), with_measurement(), shared_units());
     Context context = scenario.make_context();
     double* state = context.state().data();
     scenario.system->initialize(context, 0.0, state);
     scenario.system->at_breakpoint(context, 0.0, 0.0, state);
     CHECK(scenario.system->check_component_contracts(context, 0.0, state) == "");
   }
+}
+
+TEST_CASE("Every fit file in configs/ loads its model, outputs and parameters") {
+  int count = 0;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(source_path("configs"))) {
+    if (entry.path().extension() != ".yaml" || !is_fit_file(entry.path())) continue;
+    INFO(entry.path().filename().string());
+    const auto spec =
+        fit::load_fit(entry.path().string(), {}, protocol_record(), 1, shared_units());
+    CHECK(!spec.problem.outputs.empty());
+    CHECK(!spec.problem.parameters.empty());
+    ++count;
+  }
+  CHECK(count >= 1);
 }
 
 TEST_CASE("Every sweep file in configs/ loads with its scenarios, axes and metrics") {

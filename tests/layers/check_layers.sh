@@ -30,4 +30,5 @@ check controllers 'sim|models|controllers'
 check kinds 'sim|signals|models|controllers|kinds'
 check analysis 'sim|signals|models|controllers|kinds|analysis|tcpmsim'
 check sweep 'sim|signals|models|controllers|kinds|analysis|sweep|tcpmsim'
+check identification 'sim|signals|models|controllers|kinds|analysis|sweep|identification|tcpmsim'
 exit $((failures > 0))

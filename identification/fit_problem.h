@@ -1,0 +1,59 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sim/io/measured_data.h"
+#include "sim/scenario.h"
+
+namespace tcpmsim::fit {
+
+// A measured channel and the model output it is compared with, weighted by its noise.
+struct FitOutput {
+  std::string channel;  // in the measurement: "force"
+  std::string output;   // of the model: "load.force"
+  std::string unit;     // the SI unit both are in
+  double noise = 1.0;   // the measurement's standard deviation [unit]; residuals are divided by it
+};
+
+// A model parameter to estimate, by its path, within bounds (SI).
+struct FitParameter {
+  std::string path;  // "muscle.mechanics.k1"
+  std::string unit;  // its SI unit
+  double lower = 0.0;
+  double upper = 0.0;
+};
+
+// A time window of the measurement [from, to].
+struct TimeWindow {
+  double from = 0.0;
+  double to = 0.0;
+};
+
+// An output-error identification: simulate `model` (its inputs replay `data`), compare its
+// outputs with the measured channels at the samples inside `identification`, and choose the
+// parameters within their bounds that minimise the weighted squared error.
+struct FitProblem {
+  std::shared_ptr<const Scenario> model;
+  std::shared_ptr<const MeasuredData> data;
+  std::vector<FitOutput> outputs;
+  std::vector<FitParameter> parameters;
+  TimeWindow identification;
+  TimeWindow validation;  // from == to: none
+};
+
+// The model outputs at the measurement's samples inside a window, one vector per output; a run
+// of `problem.model` in a context with `values` set for the fitted parameters (SI). Throws
+// SolverFailure or ParameterError when the model cannot run at `values`.
+std::vector<std::vector<double>> simulate_outputs(const FitProblem& problem,
+                                                  const std::vector<double>& values,
+                                                  const TimeWindow& window);
+// The measured values at the same samples, one vector per output.
+std::vector<std::vector<double>> measured_outputs(const FitProblem& problem,
+                                                  const TimeWindow& window);
+
+// The indices of the measurement's samples inside `window`.
+std::pair<std::size_t, std::size_t> samples_in(const MeasuredData& data, const TimeWindow& window);
+
+}  // namespace tcpmsim::fit

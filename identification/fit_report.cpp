@@ -1,0 +1,191 @@
+#include "identification/fit_report.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "kinds/standard_kinds.h"
+#include "sim/config/config_node.h"
+#include "sim/io/hdf5_writer.h"
+
+namespace tcpmsim::fit {
+
+namespace {
+
+std::string text_number(double value, int digits = 10) {
+  std::ostringstream text;
+  text.precision(digits);
+  text << value;
+  return text.str();
+}
+
+nlohmann::json number_or_null(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+nlohmann::json window_json(const FitSpec& spec, const WindowScore& score) {
+  nlohmann::json window = nlohmann::json::object();
+  for (std::size_t k = 0; k < score.rmse.size(); ++k) {
+    window[spec.problem.outputs[k].channel] = {{"rmse", number_or_null(score.rmse[k])},
+                                               {"nrmse", number_or_null(score.nrmse[k])},
+                                               {"r2", number_or_null(score.r2[k])}};
+  }
+  return window;
+}
+
+std::string window_lines(const FitSpec& spec, const char* name, const TimeWindow& window,
+                         const WindowScore& score) {
+  std::ostringstream out;
+  for (std::size_t k = 0; k < score.rmse.size(); ++k) {
+    const auto& output = spec.problem.outputs[k];
+    out << "  " << std::left << std::setw(15) << name << std::setw(13) << output.channel << "["
+        << text_number(window.from, 6) << " s, " << text_number(window.to, 6) << " s]  RMSE "
+        << text_number(score.rmse[k], 4) << " " << output.unit << ", NRMSE "
+        << text_number(score.nrmse[k], 4) << ", R2 " << text_number(score.r2[k], 6) << "\n";
+  }
+  return out.str();
+}
+
+// The node at a parameter's scenario path ("muscles.left.mechanics.k1", "muscle.effects[0].tau").
+YAML::Node node_at(YAML::Node node, const std::string& path) {
+  std::size_t start = 0;
+  while (start < path.size()) {
+    const std::size_t end = path.find_first_of(".[", start);
+    const std::string key = path.substr(start, end - start);
+    if (!key.empty()) node.reset(node[key]);
+    if (end == std::string::npos) break;
+    if (path[end] == '[') {
+      const std::size_t close = path.find(']', end);
+      node.reset(node[std::stoul(path.substr(end + 1, close - end - 1))]);
+      start = close + 1;
+      if (start < path.size() && path[start] == '.') ++start;
+    } else {
+      start = end + 1;
+    }
+  }
+  return node;
+}
+
+std::vector<std::string> instance_sections() {
+  std::vector<std::string> sections;
+  const KindRegistry kinds = standard_kinds();
+  for (const Category& category : kinds.categories())
+    if (category.top_level()) sections.push_back(category.plural);
+  return sections;
+}
+
+}  // namespace
+
+std::string fit_summary(const FitSpec& spec, const FitResult& result) {
+  std::ostringstream out;
+  out << "fit of " << spec.model_file << " to " << spec.data_file << ": " << result.iterations
+      << " iterations, " << result.simulations << " simulations; " << result.termination << "\n";
+  out << "  " << std::left << std::setw(36) << "parameter" << std::setw(16) << "initial"
+      << std::setw(16) << "estimate" << std::setw(14) << "std. error"
+      << "unit\n";
+  for (const auto& estimate : result.estimates) {
+    out << "  " << std::setw(36) << estimate.path << std::setw(16)
+        << text_number(estimate.initial, 6) << std::setw(16) << text_number(estimate.value, 6)
+        << std::setw(14)
+        << (estimate.identifiable ? text_number(estimate.standard_error, 3) : "unidentified")
+        << estimate.unit << "\n";
+  }
+  for (const auto& problem : result.identifiability) out << "  not identified: " << problem << "\n";
+  out << window_lines(spec, "identification", spec.problem.identification, result.identification);
+  if (!result.validation.rmse.empty())
+    out << window_lines(spec, "validation", spec.problem.validation, result.validation);
+  return out.str();
+}
+
+std::string fit_json(const FitSpec& spec, const FitResult& result) {
+  nlohmann::json json;
+  json["model"] = spec.model_file;
+  json["data"] = spec.data_file;
+  json["parameters"] = nlohmann::json::array();
+  for (const auto& estimate : result.estimates) {
+    json["parameters"].push_back({{"path", estimate.path},
+                                  {"unit", estimate.unit},
+                                  {"initial", estimate.initial},
+                                  {"estimate", estimate.value},
+                                  {"standard_error", number_or_null(estimate.standard_error)},
+                                  {"identifiable", estimate.identifiable}});
+  }
+  json["correlation"] = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < result.correlation.rows(); ++i) {
+    nlohmann::json row = nlohmann::json::array();
+    for (Eigen::Index j = 0; j < result.correlation.cols(); ++j)
+      row.push_back(number_or_null(result.correlation(i, j)));
+    json["correlation"].push_back(row);
+  }
+  json["rank"] = result.rank;
+  json["identifiability"] = result.identifiability;
+  json["identification"] = window_json(spec, result.identification);
+  json["validation"] = window_json(spec, result.validation);
+  json["cost"] = result.cost;
+  json["residual_variance"] = number_or_null(result.residual_variance);
+  json["iterations"] = result.iterations;
+  json["simulations"] = result.simulations;
+  json["termination"] = result.termination;
+  return json.dump(2) + "\n";
+}
+
+std::string fitted_scenario_yaml(const FitSpec& spec, const FitResult& result) {
+  YAML::Node root = YAML::Load(spec.problem.model->resolved_yaml);
+  const auto sections = instance_sections();
+  for (const auto& estimate : result.estimates) {
+    node_at(root, expand_instance_path(root, estimate.path, sections)) =
+        text_number(estimate.value, 17) + " " + estimate.unit;
+  }
+  YAML::Emitter out;
+  out << root;
+  return "# " + spec.model_file + " fitted to " + spec.data_file + " by tcpmsim fit " + spec.file +
+         "\n" + out.c_str() + "\n";
+}
+
+std::vector<std::string> write_fit_outputs(const std::string& directory, const FitSpec& spec,
+                                           const FitResult& result) {
+  std::filesystem::create_directories(directory);
+  const auto in = [&](const char* name) {
+    return (std::filesystem::path(directory) / name).string();
+  };
+  std::ofstream(in("fit.json")) << fit_json(spec, result);
+  std::ofstream(in("fitted.yaml")) << fitted_scenario_yaml(spec, result);
+
+  const TimeWindow whole{spec.problem.identification.from,
+                         std::max(spec.problem.identification.to, spec.problem.validation.to)};
+  std::vector<double> initial, fitted;
+  for (const auto& estimate : result.estimates) {
+    initial.push_back(estimate.initial);
+    fitted.push_back(estimate.value);
+  }
+  const auto measured = measured_outputs(spec.problem, whole);
+  const auto before = simulate_outputs(spec.problem, initial, whole);
+  const auto after = simulate_outputs(spec.problem, fitted, whole);
+  const auto [first, last] = samples_in(*spec.problem.data, whole);
+  const auto& time = spec.problem.data->time();
+  Hdf5Writer writer(in("fit.h5"));
+  writer.write("/time",
+               std::vector<double>(time.begin() + static_cast<long>(first),
+                                   time.begin() + static_cast<long>(last)),
+               "s");
+  for (std::size_t k = 0; k < spec.problem.outputs.size(); ++k) {
+    const auto& output = spec.problem.outputs[k];
+    writer.write("/measured/" + output.channel, measured[k], output.unit);
+    writer.write("/initial/" + output.channel, before[k], output.unit);
+    writer.write("/fitted/" + output.channel, after[k], output.unit);
+  }
+  writer.write(
+      "/identification_window",
+      std::vector<double>{spec.problem.identification.from, spec.problem.identification.to}, "s");
+  writer.write("/validation_window",
+               std::vector<double>{spec.problem.validation.from, spec.problem.validation.to}, "s");
+  writer.commit();
+  return {in("fit.json"), in("fitted.yaml"), in("fit.h5")};
+}
+
+}  // namespace tcpmsim::fit

@@ -1,0 +1,165 @@
+#include "identification/fit_spec.h"
+
+#include <filesystem>
+
+#include "kinds/standard_kinds.h"
+#include "sim/config/config_node.h"
+#include "sweep/sweep_spec.h"
+
+namespace tcpmsim::fit {
+
+namespace {
+
+// %g to `digits` significant digits: 17 round-trips a double.
+std::string text_number(double value, int digits = 17) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+  return buffer;
+}
+
+// A YAML single-quoted scalar: any path, whatever characters it holds.
+std::string single_quoted(const std::string& text) {
+  std::string quoted = "'";
+  for (char c : text) {
+    if (c == '\'') quoted.push_back('\'');
+    quoted.push_back(c);
+  }
+  return quoted + "'";
+}
+
+TimeWindow read_window(const ConfigNode& root, std::string_view key, const MeasuredData& data) {
+  const auto [from, to] = root.interval(key, "s");
+  const double first = data.time().front(), last = data.time().back();
+  if (from < first || to > last) {
+    root.at(key).fail("the window [" + seconds_text(from) + ", " + seconds_text(to) +
+                      "] is not inside the data, which run from " + seconds_text(first) + " to " +
+                      seconds_text(last));
+  }
+  return {from, to};
+}
+
+std::vector<FitOutput> read_outputs(const ConfigNode& root, const Scenario& model,
+                                    const MeasuredData& data) {
+  std::vector<FitOutput> outputs;
+  const ConfigNode list = root.at("outputs");
+  if (list.elements().empty()) list.fail("expected at least one output to compare");
+  for (const ConfigNode& entry : list.elements()) {
+    entry.declare({"channel", "output", "noise"});
+    FitOutput output;
+    output.channel = entry.text("channel");
+    output.output = entry.text("output");
+    const int index = model.system->signal_index(output.output);
+    if (index < 0) {
+      entry.at("output").fail("the model has no output '" + output.output +
+                              "' (outputs are named group.name, as in its record)");
+    }
+    output.unit = model.system->channels()[static_cast<std::size_t>(index)].unit;
+    const MeasuredChannel* channel = data.find(output.channel);
+    if (!channel) entry.at("channel").fail(data.missing_channel(output.channel));
+    if (!root.units().convertible(channel->unit, output.unit) ||
+        root.units().convert(1.0, channel->unit, output.unit) != 1.0) {
+      entry.at("channel").fail("channel '" + output.channel + "' is in " + channel->unit +
+                               " and output '" + output.output + "' in " + output.unit);
+    }
+    output.noise = entry.quantity("noise", output.unit, ValueCheck::positive());
+    outputs.push_back(output);
+  }
+  return outputs;
+}
+
+std::vector<FitParameter> read_parameters(const ConfigNode& root, const Scenario& model) {
+  std::vector<FitParameter> parameters;
+  const ConfigNode list = root.at("parameters");
+  if (list.elements().empty()) list.fail("expected at least one parameter to fit");
+  const Context context = model.make_context();
+  for (const ConfigNode& entry : list.elements()) {
+    entry.declare({"path", "bounds"});
+    FitParameter parameter;
+    parameter.path = entry.text("path");
+    const auto index = model.system->parameter_index(parameter.path);
+    if (!index) entry.at("path").fail("the model has no parameter '" + parameter.path + "'");
+    const auto& info = model.system->parameters()[static_cast<std::size_t>(*index)];
+    if (!info.derived_from.empty()) {
+      entry.at("path").fail("'" + parameter.path + "' is derived (" + info.derived_from +
+                            "); fit what it is derived from");
+    }
+    for (const auto& earlier : parameters) {
+      if (earlier.path == parameter.path)
+        entry.at("path").fail("'" + parameter.path + "' is listed twice");
+    }
+    parameter.unit = info.declaration.unit;
+    std::tie(parameter.lower, parameter.upper) = entry.interval("bounds", parameter.unit);
+    const double value = context.parameter(parameter.path);
+    if (value < parameter.lower || value > parameter.upper) {
+      entry.at("bounds").fail("the model's value " + text_number(value, 10) + " " + parameter.unit +
+                              " is outside the bounds");
+    }
+    for (const double bound : {parameter.lower, parameter.upper}) {
+      const std::string problem = parameter_problem(info.declaration, bound);
+      if (!problem.empty()) entry.at("bounds").fail("a bound the model refuses: " + problem);
+    }
+    parameters.push_back(parameter);
+  }
+  return parameters;
+}
+
+void read_multistart(const ConfigNode& root, FitSettings& settings) {
+  const auto multistart = root.find("multistart");
+  if (!multistart) return;
+  multistart->declare({"starts", "refine", "seed"});
+  settings.starts = static_cast<int>(
+      multistart->integer_or("starts", settings.starts, ValueCheck::between(0, 10000)));
+  settings.refine = static_cast<int>(
+      multistart->integer_or("refine", settings.refine, ValueCheck::between(1, 10000)));
+  settings.seed =
+      static_cast<std::uint64_t>(multistart->integer_or("seed", 1, ValueCheck::non_negative()));
+}
+
+}  // namespace
+
+FitSpec load_fit(const std::string& file, const std::vector<std::string>& overrides,
+                 const std::string& data_override, int threads,
+                 std::shared_ptr<const UnitSystem> units) {
+  const ConfigNode root = ConfigNode::load_file(file, overrides, units);
+  root.declare({"model", "set", "data", "outputs", "parameters", "identification", "validation",
+                "multistart"});
+  FitSpec spec;
+  spec.file = file;
+  spec.model_file = file_named_by(root.at("model"));
+  if (!data_override.empty()) {
+    spec.data_file = data_override;
+  } else if (root.has("data")) {
+    spec.data_file = file_named_by(root.at("data"));
+  } else {
+    root.fail("expected the measurement: a 'data' file here, or --data on the command line");
+  }
+  auto data = std::make_shared<const MeasuredData>(read_measured_data(spec.data_file, *units));
+  TimeWindow identification = read_window(root, "identification", *data);
+  TimeWindow validation = root.has("validation") ? read_window(root, "validation", *data)
+                                                 : TimeWindow{identification.to, identification.to};
+  const double end = std::max(identification.to, validation.to);
+  std::vector<std::string> model_overrides = sweep::read_set(root);
+  model_overrides.push_back("measurement.file=" +
+                            single_quoted(std::filesystem::absolute(spec.data_file).string()));
+  model_overrides.push_back("scenario.duration=" + text_number(end) + " s");
+  std::shared_ptr<const Scenario> model;
+  try {
+    model =
+        std::make_shared<const Scenario>(load_scenario(spec.model_file, model_overrides, units));
+  } catch (const ConfigError& error) {
+    sweep::blame_set(root, "model", error);
+    throw;
+  }
+  spec.problem.model = model;
+  spec.problem.data = data;
+  spec.problem.identification = identification;
+  spec.problem.validation = validation;
+  spec.problem.outputs = read_outputs(root, *model, *data);
+  spec.problem.parameters = read_parameters(root, *model);
+  spec.settings.threads = threads;
+  read_multistart(root, spec.settings);
+  root.reject_unknown_keys();
+  return spec;
+}
+
+}  // namespace tcpmsim::fit

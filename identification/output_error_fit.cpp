@@ -1,0 +1,360 @@
+#include "identification/output_error_fit.h"
+
+#include <ceres/ceres.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <sstream>
+
+#include "sim/parallel_runs.h"
+#include "sweep/sweep_design.h"
+
+namespace tcpmsim::fit {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// The parameters in SI from the optimiser's coordinates: each bound range mapped to [0, 1].
+std::vector<double> physical(const FitProblem& problem, const double* unit_values) {
+  std::vector<double> values;
+  for (std::size_t j = 0; j < problem.parameters.size(); ++j) {
+    const auto& parameter = problem.parameters[j];
+    values.push_back(parameter.lower + unit_values[j] * (parameter.upper - parameter.lower));
+  }
+  return values;
+}
+
+// Weighted residuals (model - measured) / noise at the identification samples, output by
+// output; false if the model cannot run there.
+class Residuals {
+ public:
+  explicit Residuals(const FitProblem& problem)
+      : problem_(problem), measured_(measured_outputs(problem, problem.identification)) {
+    for (const auto& series : measured_) count_ += series.size();
+  }
+  std::size_t count() const { return count_; }
+
+  bool evaluate(const std::vector<double>& values, double* residuals) const {
+    ++simulations_;
+    std::vector<std::vector<double>> simulated;
+    try {
+      simulated = simulate_outputs(problem_, values, problem_.identification);
+    } catch (const std::exception&) {
+      return false;  // a solver failure or a value the model refuses: a step Ceres must reject
+    }
+    std::size_t at = 0;
+    for (std::size_t k = 0; k < measured_.size(); ++k) {
+      const double noise = problem_.outputs[k].noise;
+      for (std::size_t i = 0; i < measured_[k].size(); ++i)
+        residuals[at++] = (simulated[k][i] - measured_[k][i]) / noise;
+    }
+    return std::all_of(residuals, residuals + count_, [](double r) { return std::isfinite(r); });
+  }
+  double cost(const std::vector<double>& values) const {
+    std::vector<double> residuals(count_);
+    if (!evaluate(values, residuals.data())) return std::numeric_limits<double>::infinity();
+    return 0.5 * std::inner_product(residuals.begin(), residuals.end(), residuals.begin(), 0.0);
+  }
+  int simulations() const { return simulations_; }
+
+ private:
+  const FitProblem& problem_;
+  std::vector<std::vector<double>> measured_;
+  std::size_t count_ = 0;
+  mutable std::atomic<int> simulations_{0};
+};
+
+// The residuals of one simulation and their forward-difference Jacobian in the unit
+// coordinates, its columns simulated in parallel.
+class SimulationCost final : public ceres::CostFunction {
+ public:
+  SimulationCost(const FitProblem& problem, const Residuals& residuals, const FitSettings& settings)
+      : problem_(problem), residuals_(residuals), settings_(settings) {
+    set_num_residuals(static_cast<int>(residuals.count()));
+    mutable_parameter_block_sizes()->push_back(static_cast<int>(problem.parameters.size()));
+  }
+
+  // Ceres asks for the same point more than once (a bounded step's line search, its cost, then
+  // its Jacobian): the last point's residuals and Jacobian are kept and handed out again.
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
+    const std::size_t n = problem_.parameters.size();
+    const std::size_t m = residuals_.count();
+    const std::vector<double> theta(parameters[0], parameters[0] + n);
+    const bool want_jacobian = jacobians && jacobians[0];
+    if (theta != last_theta_) {
+      last_theta_.clear();
+      last_jacobian_.clear();
+      last_residuals_.assign(m, 0.0);
+      if (!residuals_.evaluate(physical(problem_, theta.data()), last_residuals_.data()))
+        return false;
+      last_theta_ = theta;
+    }
+    std::copy(last_residuals_.begin(), last_residuals_.end(), residuals);
+    if (!want_jacobian) return true;
+    if (last_jacobian_.empty() && !difference(theta)) return false;
+    std::copy(last_jacobian_.begin(), last_jacobian_.end(), jacobians[0]);
+    return true;
+  }
+
+ private:
+  // The forward-difference Jacobian at the last point (row-major), its columns in parallel.
+  bool difference(const std::vector<double>& theta) const {
+    const std::size_t n = theta.size();
+    const std::size_t m = residuals_.count();
+    std::vector<std::vector<double>> columns(n, std::vector<double>(m));
+    std::vector<double> steps(n);
+    std::vector<char> ran(n, 0);
+    const std::vector<std::string> labels(n, "finite difference");
+    run_in_parallel(labels, settings_.threads, [&](std::size_t j) {
+      std::vector<double> shifted = theta;
+      // Forward, or backward at the upper bound, by a fixed fraction of the range.
+      steps[j] = theta[j] + settings_.difference_step <= 1.0 ? settings_.difference_step
+                                                             : -settings_.difference_step;
+      shifted[j] += steps[j];
+      ran[j] = residuals_.evaluate(physical(problem_, shifted.data()), columns[j].data());
+    });
+    if (std::find(ran.begin(), ran.end(), 0) != ran.end()) return false;
+    last_jacobian_.resize(m * n);
+    for (std::size_t i = 0; i < m; ++i) {
+      for (std::size_t j = 0; j < n; ++j)
+        last_jacobian_[i * n + j] = (columns[j][i] - last_residuals_[i]) / steps[j];
+    }
+    return true;
+  }
+
+  const FitProblem& problem_;
+  const Residuals& residuals_;
+  const FitSettings& settings_;
+  mutable std::vector<double> last_theta_;
+  mutable std::vector<double> last_residuals_;
+  mutable std::vector<double> last_jacobian_;
+};
+
+struct Refined {
+  std::vector<double> theta;
+  double cost = 0.0;
+  int iterations = 0;
+  std::string termination;
+};
+
+Refined refine(const FitProblem& problem, const Residuals& residuals, const FitSettings& settings,
+               std::vector<double> theta) {
+  ceres::Problem ceres_problem;
+  ceres_problem.AddResidualBlock(new SimulationCost(problem, residuals, settings), nullptr,
+                                 theta.data());
+  for (std::size_t j = 0; j < theta.size(); ++j) {
+    ceres_problem.SetParameterLowerBound(theta.data(), static_cast<int>(j), 0.0);
+    ceres_problem.SetParameterUpperBound(theta.data(), static_cast<int>(j), 1.0);
+  }
+  ceres::Solver::Options options;
+  options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  options.linear_solver_type = ceres::DENSE_QR;
+  options.max_num_iterations = settings.max_iterations;
+  options.function_tolerance = 1e-8;
+  options.parameter_tolerance = 1e-8;
+  options.gradient_tolerance = 1e-12;
+  options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &ceres_problem, &summary);
+  return {theta, summary.final_cost, static_cast<int>(summary.iterations.size()),
+          summary.message + " (" + std::to_string(summary.num_residual_evaluations) +
+              " residual and " + std::to_string(summary.num_jacobian_evaluations) +
+              " Jacobian evaluations)"};
+}
+
+// The starting points: the model's own values, then `starts` Latin-hypercube points.
+std::vector<std::vector<double>> starting_points(const FitProblem& problem,
+                                                 const FitSettings& settings) {
+  const std::size_t n = problem.parameters.size();
+  const Context context = problem.model->make_context();
+  std::vector<std::vector<double>> points(1 + static_cast<std::size_t>(settings.starts),
+                                          std::vector<double>(n));
+  for (std::size_t j = 0; j < n; ++j) {
+    const auto& parameter = problem.parameters[j];
+    points[0][j] =
+        (context.parameter(parameter.path) - parameter.lower) / (parameter.upper - parameter.lower);
+    if (settings.starts == 0) continue;
+    RandomStream stream(settings.seed, "fit start " + parameter.path);
+    const auto column =
+        sweep::latin_hypercube_values(0.0, 1.0, settings.starts, sweep::Spacing::linear, stream);
+    for (std::size_t s = 0; s < column.size(); ++s) points[s + 1][j] = column[s];
+  }
+  return points;
+}
+
+WindowScore score(const std::vector<std::vector<double>>& simulated,
+                  const std::vector<std::vector<double>>& measured) {
+  WindowScore result;
+  for (std::size_t k = 0; k < measured.size(); ++k) {
+    const auto& y = measured[k];
+    result.samples = y.size();
+    const double mean = std::accumulate(y.begin(), y.end(), 0.0) / static_cast<double>(y.size());
+    double sse = 0.0, sst = 0.0;
+    for (std::size_t i = 0; i < y.size(); ++i) {
+      sse += (simulated[k][i] - y[i]) * (simulated[k][i] - y[i]);
+      sst += (y[i] - mean) * (y[i] - mean);
+    }
+    const auto [low, high] = std::minmax_element(y.begin(), y.end());
+    const double rmse = std::sqrt(sse / static_cast<double>(y.size()));
+    result.rmse.push_back(rmse);
+    result.nrmse.push_back(*high > *low ? rmse / (*high - *low) : kNaN);
+    result.r2.push_back(sst > 0 ? 1.0 - sse / sst : kNaN);
+  }
+  return result;
+}
+
+std::string number_text(double value, int digits = 4) {
+  std::ostringstream text;
+  text.precision(digits);
+  text << value;
+  return text.str();
+}
+
+// Standard errors and correlations from the weighted Jacobian J (m x n, per SI unit of each
+// parameter): covariance s^2 (J^T J)^-1 with s^2 = 2 cost / (m - n), computed through the SVD of
+// J with its columns scaled to unit norm, so that the rank test does not depend on units.
+void add_statistics(FitResult& result, const Eigen::MatrixXd& jacobian) {
+  const auto n = jacobian.cols();
+  const auto m = jacobian.rows();
+  result.residual_variance = m > n ? 2.0 * result.cost / static_cast<double>(m - n) : kNaN;
+  const Eigen::VectorXd norms = jacobian.colwise().norm();
+  Eigen::MatrixXd scaled = jacobian;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    if (norms(j) > 0) scaled.col(j) /= norms(j);
+  }
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(scaled, Eigen::ComputeThinV);
+  const Eigen::VectorXd sigma = svd.singularValues();
+  const double threshold = sigma(0) * 1e-7;
+  result.rank = 0;
+  Eigen::MatrixXd covariance = Eigen::MatrixXd::Zero(n, n);
+  for (Eigen::Index k = 0; k < sigma.size(); ++k) {
+    if (sigma(k) > threshold && sigma(k) > 0) {
+      ++result.rank;
+      covariance += svd.matrixV().col(k) * svd.matrixV().col(k).transpose() / (sigma(k) * sigma(k));
+    }
+  }
+  std::vector<bool> identified(static_cast<std::size_t>(n), true);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    if (norms(j) == 0) {
+      identified[static_cast<std::size_t>(j)] = false;
+      result.identifiability.push_back(result.estimates[static_cast<std::size_t>(j)].path +
+                                       " does not change the outputs");
+    }
+  }
+  for (Eigen::Index k = result.rank; k < sigma.size(); ++k) {  // the directions without data
+    std::string involved;
+    for (Eigen::Index j = 0; j < n; ++j) {
+      if (std::abs(svd.matrixV()(j, k)) > 0.1 && norms(j) > 0) {
+        identified[static_cast<std::size_t>(j)] = false;
+        involved +=
+            (involved.empty() ? "" : ", ") + result.estimates[static_cast<std::size_t>(j)].path;
+      }
+    }
+    if (!involved.empty()) {
+      result.identifiability.push_back("rank " + std::to_string(result.rank) + " of " +
+                                       std::to_string(n) + ": the data fix no combination of " +
+                                       involved + " (singular value " +
+                                       number_text(sigma(k) / sigma(0), 2) + " of the largest)");
+    }
+  }
+  result.correlation = Eigen::MatrixXd::Constant(n, n, kNaN);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    for (Eigen::Index j = 0; j < n; ++j) {
+      if (identified[static_cast<std::size_t>(i)] && identified[static_cast<std::size_t>(j)])
+        result.correlation(i, j) =
+            covariance(i, j) / std::sqrt(covariance(i, i) * covariance(j, j));
+    }
+  }
+  for (Eigen::Index j = 0; j < n; ++j) {
+    auto& estimate = result.estimates[static_cast<std::size_t>(j)];
+    estimate.identifiable = identified[static_cast<std::size_t>(j)];
+    estimate.standard_error =
+        estimate.identifiable ? std::sqrt(result.residual_variance * covariance(j, j)) / norms(j)
+                              : kNaN;
+    for (Eigen::Index i = 0; i < j; ++i) {
+      const double rho = result.correlation(i, j);
+      if (std::isfinite(rho) && std::abs(rho) > 0.99) {
+        result.identifiability.push_back(result.estimates[static_cast<std::size_t>(i)].path +
+                                         " and " + estimate.path + " are correlated (" +
+                                         number_text(rho, 5) + ")");
+      }
+    }
+  }
+}
+
+}  // namespace
+
+WindowScore score_window(const FitProblem& problem, const std::vector<double>& values,
+                         const TimeWindow& window) {
+  return score(simulate_outputs(problem, values, window), measured_outputs(problem, window));
+}
+
+FitResult fit_model(const FitProblem& problem, const FitSettings& settings) {
+  const Residuals residuals(problem);
+  const auto points = starting_points(problem, settings);
+  std::vector<double> costs(points.size());
+  std::vector<std::string> labels(points.size(), "start");
+  run_in_parallel(labels, settings.threads, [&](std::size_t s) {
+    costs[s] = residuals.cost(physical(problem, points[s].data()));
+  });
+  std::vector<std::size_t> order(points.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return costs[a] < costs[b]; });
+  Refined best;
+  best.cost = std::numeric_limits<double>::infinity();
+  int iterations = 0;
+  const auto refinements =
+      std::min<std::size_t>(points.size(), static_cast<std::size_t>(std::max(1, settings.refine)));
+  for (std::size_t r = 0; r < refinements; ++r) {
+    if (!std::isfinite(costs[order[r]])) break;
+    Refined candidate = refine(problem, residuals, settings, points[order[r]]);
+    iterations += candidate.iterations;
+    if (candidate.cost < best.cost) best = std::move(candidate);
+  }
+  if (!std::isfinite(best.cost)) {
+    throw std::runtime_error("the model could not be simulated at any starting point");
+  }
+
+  FitResult result;
+  result.cost = best.cost;
+  result.iterations = iterations;
+  result.termination = best.termination;
+  const std::vector<double> values = physical(problem, best.theta.data());
+  const Context context = problem.model->make_context();
+  for (std::size_t j = 0; j < problem.parameters.size(); ++j) {
+    const auto& parameter = problem.parameters[j];
+    result.estimates.push_back(
+        {parameter.path, parameter.unit, context.parameter(parameter.path), values[j], kNaN, true});
+  }
+  // The Jacobian at the estimate, per SI unit of each parameter.
+  const SimulationCost cost(problem, residuals, settings);
+  const std::size_t m = residuals.count(), n = values.size();
+  std::vector<double> r(m), jacobian_values(m * n);
+  double* jacobian_pointer = jacobian_values.data();
+  const double* theta = best.theta.data();
+  if (!cost.Evaluate(&theta, r.data(), &jacobian_pointer)) {
+    throw std::runtime_error("the model could not be simulated around the estimate");
+  }
+  Eigen::MatrixXd jacobian(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(n));
+  for (std::size_t i = 0; i < m; ++i) {
+    for (std::size_t j = 0; j < n; ++j) {
+      const auto& parameter = problem.parameters[j];
+      jacobian(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
+          jacobian_values[i * n + j] / (parameter.upper - parameter.lower);
+    }
+  }
+  add_statistics(result, jacobian);
+  result.identification = score_window(problem, values, problem.identification);
+  if (problem.validation.to > problem.validation.from)
+    result.validation = score_window(problem, values, problem.validation);
+  result.simulations = residuals.simulations();
+  return result;
+}
+
+}  // namespace tcpmsim::fit

@@ -1,0 +1,68 @@
+#pragma once
+
+#include <Eigen/Dense>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "identification/fit_problem.h"
+
+namespace tcpmsim::fit {
+
+struct FitSettings {
+  // Multistart: `starts` Latin-hypercube points over the bounds (seeded) are screened by one
+  // simulation each, besides the model's own values; Levenberg-Marquardt refines the `refine`
+  // best of them, and the best refined result is the estimate.
+  int starts = 8;
+  int refine = 1;
+  std::uint64_t seed = 1;
+  int threads = 2;                // simulations at once (finite differences, screening)
+  double difference_step = 1e-4;  // of each parameter's bound range, for forward differences
+  int max_iterations = 50;
+};
+
+// One parameter's estimate. standard_error is NaN when the data do not identify it.
+struct ParameterEstimate {
+  std::string path;
+  std::string unit;
+  double initial = 0.0;
+  double value = 0.0;
+  double standard_error = 0.0;
+  bool identifiable = true;
+};
+
+// How well the model fits the measurement in a window, per output: RMSE [unit], NRMSE (RMSE
+// over the measured range), R^2 (1 - SSE/SST).
+struct WindowScore {
+  std::vector<double> rmse;
+  std::vector<double> nrmse;
+  std::vector<double> r2;
+  std::size_t samples = 0;
+};
+
+struct FitResult {
+  std::vector<ParameterEstimate> estimates;
+  Eigen::MatrixXd correlation;  // of the estimates (NaN rows for unidentified ones)
+  int rank = 0;                 // of the weighted Jacobian at the optimum
+  // Why parameters were not identified: "k1 and k2 are correlated (-0.9995)", "c does not
+  // change the outputs (rank 5 of 6)".
+  std::vector<std::string> identifiability;
+  double cost = 0.0;               // 1/2 sum of squared weighted residuals at the estimate
+  double residual_variance = 0.0;  // 2 cost / (samples - parameters)
+  int iterations = 0;
+  int simulations = 0;
+  std::string termination;
+  WindowScore identification;
+  WindowScore validation;
+};
+
+// Levenberg-Marquardt (Ceres) from a seeded multistart, with forward-difference gradients run
+// as parallel simulations; standard errors and correlations from the Jacobian at the optimum.
+FitResult fit_model(const FitProblem& problem, const FitSettings& settings);
+
+// The scores of the model at `values` in `window`.
+WindowScore score_window(const FitProblem& problem, const std::vector<double>& values,
+                         const TimeWindow& window);
+
+}  // namespace tcpmsim::fit

@@ -1,0 +1,256 @@
+// Output-error identification: the thesis' chapter-7 fit of the force model, recovered from data
+// simulated under the chapter-7 protocol with load-cell noise.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
+
+#include "identification/fit_report.h"
+#include "sim/random_stream.h"
+#include "tests/support/test_support.h"
+
+using namespace tcpmsim;
+using namespace tcpmsim::testing;
+
+namespace {
+
+std::filesystem::path fit_directory() {
+  // One per test process: ctest runs cases in parallel processes.
+  const auto directory = std::filesystem::temp_directory_path() / "tcpmsim_tests" /
+                         ("fit_" + std::to_string(getpid()));
+  std::filesystem::create_directories(directory);
+  return directory;
+}
+
+void write_csv(const std::string& path, const Trace& trace, double force_noise,
+               std::uint64_t seed) {
+  std::ofstream file(path);
+  file << "time[s],power[W],deflection[m],force[N]\n";
+  RandomStream stream(seed, "load cell");
+  char line[160];
+  for (std::size_t i = 0; i < trace.time.size(); ++i) {
+    std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g\n", trace.time[i],
+                  trace["drive/power"][i], trace["load/deflection"][i],
+                  trace["load/force"][i] + force_noise * stream.normal());
+    file << line;
+  }
+}
+
+// A fit of `paths` (bounds: half to twice the model's value) of the base model to `data`.
+fit::FitProblem base_problem(const std::string& data, const std::vector<std::string>& paths,
+                             const std::vector<std::string>& overrides = {}) {
+  std::vector<std::string> all = overrides;
+  all.push_back("measurement.file=" + data);
+  fit::FitProblem problem;
+  problem.model = std::make_shared<const Scenario>(
+      load_scenario(source_path("configs/discover/ch7_base.yaml"), all, shared_units()));
+  problem.data = std::make_shared<const MeasuredData>(read_measured_data(data, *shared_units()));
+  problem.outputs = {{"force", "load.force", "N", 1e-3}};
+  const Context context = problem.model->make_context();
+  for (const auto& path : paths) {
+    const auto index = problem.model->system->parameter_index(path);
+    const auto& unit =
+        problem.model->system->parameters()[static_cast<std::size_t>(*index)].declaration.unit;
+    problem.parameters.push_back(
+        {path, unit, 0.5 * context.parameter(path), 2.0 * context.parameter(path)});
+  }
+  problem.identification = {0.0, 400.0};
+  problem.validation = {400.0, 620.0};
+  return problem;
+}
+
+// A bench measurement of the Table 7.2 muscle under the chapter-7 protocol: the protocol's
+// power and deflection as the bench applies and records them at 16 Hz (the power held over each
+// sample), the muscle's force under those inputs from the load cell (0.5 mN resolution) plus
+// normal noise.
+std::string protocol_measurement(double noise, std::uint64_t seed,
+                                 const std::vector<std::string>& overrides = {}) {
+  const std::string inputs = (fit_directory() / "protocol_inputs.csv").string();
+  write_csv(inputs,
+            simulate(load_scenario(source_path("configs/discover/ch7_protocol.yaml"), {},
+                                   shared_units())),
+            0.0, seed);
+  std::vector<std::string> truth_overrides = overrides;
+  truth_overrides.push_back("measurement.file=" + inputs);
+  truth_overrides.push_back("load.load_cell_resolution=0.5 mN");
+  const Trace truth = simulate(load_scenario(source_path("configs/discover/ch7_base.yaml"),
+                                             truth_overrides, shared_units()));
+  const std::string path =
+      (fit_directory() / ("protocol_" + std::to_string(seed) + ".csv")).string();
+  write_csv(path, truth, noise, seed);
+  return path;
+}
+
+}  // namespace
+
+TEST_CASE("The six force-model parameters of Table 7.2 are recovered from the chapter-7 protocol") {
+  const double noise = 1e-3;  // N
+  const std::string data_path = protocol_measurement(noise, 7);
+  // Start 20 % away from the truth.
+  auto model = std::make_shared<const Scenario>(
+      load_scenario(source_path("configs/discover/ch7_base.yaml"),
+                    {"measurement.file=" + data_path, "muscle.thermal_force.kappa_P=8.64e-3 N/J",
+                     "muscle.thermal_force.kappa_c=0.105 1/s",
+                     "muscle.mechanics.force_offset=0.0855 N", "muscle.mechanics.k1=12.96e-3 N/mm",
+                     "muscle.mechanics.k2=2.16e-3 N/mm", "muscle.mechanics.damping=5.16e-3 N*s/mm"},
+                    shared_units()));
+  fit::FitProblem problem;
+  problem.model = model;
+  problem.data =
+      std::make_shared<const MeasuredData>(read_measured_data(data_path, *shared_units()));
+  problem.outputs = {{"force", "load.force", "N", noise}};
+  struct Truth {
+    const char* path;
+    const char* unit;
+    double value;
+  };
+  const std::vector<Truth> truth = {{"muscle.thermal_force.kappa_P", "N/J", 7.2e-3},
+                                    {"muscle.thermal_force.kappa_c", "1/s", 131.6e-3},
+                                    {"muscle.mechanics.force_offset", "N", 106.9e-3},
+                                    {"muscle.mechanics.k1", "N/m", 10.8},
+                                    {"muscle.mechanics.k2", "N/m", 2.7},
+                                    {"muscle.mechanics.damping", "N*s/m", 4.3}};
+  for (const auto& parameter : truth) {
+    problem.parameters.push_back(
+        {parameter.path, parameter.unit, 0.5 * parameter.value, 2.0 * parameter.value});
+  }
+  problem.identification = {0.0, 400.0};
+  problem.validation = {400.0, 620.0};
+  fit::FitSettings settings;
+  settings.starts = 0;
+  settings.refine = 1;
+  const fit::FitResult result = fit::fit_model(problem, settings);
+  INFO(result.termination << "; " << result.iterations << " iterations, " << result.simulations
+                          << " simulations");
+  for (std::size_t j = 0; j < truth.size(); ++j) {
+    const auto& estimate = result.estimates[j];
+    INFO(estimate.path << " = " << estimate.value << " +- " << estimate.standard_error << ", truth "
+                       << truth[j].value);
+    CHECK(estimate.identifiable);
+    CHECK(std::abs(estimate.value - truth[j].value) <= 3.0 * estimate.standard_error);
+    CHECK(estimate.standard_error < 0.05 * truth[j].value);
+  }
+  WARN("fit: " << result.iterations << " iterations, " << result.simulations << " simulations; "
+               << "validation RMSE " << result.validation.rmse[0] * 1e3 << " mN, R2 "
+               << result.validation.r2[0]);
+  CHECK(result.identification.rmse[0] == Approx(noise).epsilon(0.1));
+}
+
+TEST_CASE("Parameters the data cannot identify are named, never returned as numbers") {
+  // At a constant deflection x the force is phi0 + k1 x + ...: the data fix only their sum. In
+  // the reduced form (7.1), phi_T only converts F_T into a reported temperature.
+  const std::string data = protocol_measurement(1e-3, 11, {"load.deflection=20 mm"});
+  fit::FitProblem problem =
+      base_problem(data,
+                   {"muscle.mechanics.force_offset", "muscle.mechanics.k1",
+                    "muscle.thermal_force.kappa_P", "muscle.thermal_force.force_per_kelvin"},
+                   {"load.deflection=20 mm"});
+  fit::FitSettings settings;
+  settings.starts = 0;
+  const fit::FitResult result = fit::fit_model(problem, settings);
+  for (const auto& line : result.identifiability) INFO(line);
+  CHECK(result.rank < 4);
+  CHECK_FALSE(result.estimates[0].identifiable);
+  CHECK_FALSE(result.estimates[1].identifiable);
+  CHECK(result.estimates[2].identifiable);
+  CHECK_FALSE(result.estimates[3].identifiable);
+  CHECK(std::isnan(result.estimates[0].standard_error));
+  CHECK(std::isnan(result.estimates[3].standard_error));
+  CHECK(std::find(result.identifiability.begin(), result.identifiability.end(),
+                  "muscle.thermal_force.force_per_kelvin does not change the outputs") !=
+        result.identifiability.end());
+  bool offset_and_stiffness_named = false;
+  for (const auto& line : result.identifiability) {
+    offset_and_stiffness_named = offset_and_stiffness_named ||
+                                 (line.find("muscle.mechanics.force_offset") != std::string::npos &&
+                                  line.find("muscle.mechanics.k1") != std::string::npos);
+  }
+  CHECK(offset_and_stiffness_named);
+  // kappa_P is still fixed by the data, and well.
+  CHECK(result.estimates[2].value == Approx(7.2e-3).epsilon(0.01));
+}
+
+namespace {
+
+std::string fit_file_error(const std::string& text, const std::string& data) {
+  const auto path = fit_directory() / "errors.yaml";
+  std::ofstream(path) << text;
+  try {
+    fit::load_fit(path.string(), {}, data, 1, shared_units());
+  } catch (const ConfigError& error) {
+    return error.what();
+  }
+  return "no error";
+}
+
+}  // namespace
+
+TEST_CASE("A fit file's mistakes are located at their keys") {
+  const std::string data = protocol_measurement(1e-3, 3);
+  const std::string model = source_path("configs/discover/ch7_base.yaml");
+  const std::string file = (fit_directory() / "errors.yaml").string();  // as fit_file_error writes
+  const std::string valid = "model: " + model + R"(
+outputs: [{channel: force, output: load.force, noise: 1 mN}]
+parameters: [{path: muscle.mechanics.k1, bounds: [5 N/m, 20 N/m]}]
+identification: [0 s, 400 s]
+)";
+  CHECK(fit_file_error(valid, data) == "no error");
+  CHECK(fit_file_error(replaced(valid, "muscle.mechanics.k1", "muscle.mechanics.k3"), data) ==
+        file +
+            ":3:21: error: parameters[0].path: the model has no parameter 'muscle.mechanics.k3'");
+  CHECK(fit_file_error(replaced(valid, "[5 N/m, 20 N/m]", "[11 N/m, 20 N/m]"), data) ==
+        file +
+            ":3:50: error: parameters[0].bounds: the model's value 10.8 N/m is "
+            "outside the bounds");
+  CHECK(fit_file_error(replaced(valid, "[5 N/m, 20 N/m]", "[5 N, 20 N]"), data) ==
+        file +
+            ":3:51: error: parameters[0].bounds[0]: wrong unit in '5 N': unit 'N' cannot be "
+            "converted to 'N/m'");
+  CHECK(fit_file_error(replaced(valid, "output: load.force", "output: load.forse"), data) ==
+        file +
+            ":2:36: error: outputs[0].output: the model has no output 'load.forse' (outputs "
+            "are named group.name, as in its record)");
+  CHECK(fit_file_error(replaced(valid, "channel: force", "channel: forse"), data) ==
+        file + ":2:21: error: outputs[0].channel: " + data +
+            " has no channel 'forse' (did you mean 'force'?); its channels: time, power, "
+            "deflection, force");
+  CHECK(fit_file_error(replaced(valid, "[0 s, 400 s]", "[0 s, 700 s]"), data) ==
+        file +
+            ":4:17: error: identification: the window [0 s, 700 s] is not inside the data, "
+            "which run from 0 s to 620 s");
+  CHECK(fit_file_error(valid + "set: [muscle.mechanics.k1=-1 N/m]\n", data)
+            .starts_with(file + ":5:7: error: set[0]: scenario 'model' does not take it"));
+}
+
+TEST_CASE("The fitted scenario runs and reproduces the fitted outputs; the report holds them") {
+  const std::string data = protocol_measurement(1e-3, 5);
+  const auto path = fit_directory() / "short.yaml";
+  std::ofstream(path) << "model: " << source_path("configs/discover/ch7_base.yaml") << R"(
+set: [muscle.mechanics.k1=12 mN/mm]
+outputs: [{channel: force, output: load.force, noise: 1 mN}]
+parameters: [{path: muscle.mechanics.k1, bounds: [5 N/m, 20 N/m]}]
+identification: [0 s, 400 s]
+validation: [400 s, 620 s]
+multistart: {starts: 2}
+)";
+  const fit::FitSpec spec = fit::load_fit(path.string(), {}, data, 2, shared_units());
+  const fit::FitResult result = fit::fit_model(spec.problem, spec.settings);
+  CHECK(result.estimates[0].initial == 12.0);
+  CHECK(result.estimates[0].value == Approx(10.8).margin(3 * result.estimates[0].standard_error));
+  const auto out = fit_directory() / "out";
+  fit::write_fit_outputs(out.string(), spec, result);
+  const Trace rerun = simulate(load_scenario((out / "fitted.yaml").string(), {}, shared_units()));
+  const MeasuredData written = read_measured_data((out / "fit.h5").string(), *shared_units());
+  REQUIRE(written.find("fitted.force") != nullptr);
+  const auto& fitted = written.find("fitted.force")->values;
+  REQUIRE(rerun.time.size() == fitted.size());
+  // The estimate is written with 17 digits, so the rerun is the fitted model itself.
+  CHECK(max_abs_difference(rerun["load/force"], fitted) <= 1e-12);
+  CHECK(bitwise_equal(written.find("measured.force")->values,
+                      spec.problem.data->find("force")->values));
+}
