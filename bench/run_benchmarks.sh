@@ -45,3 +45,5 @@ echo "== bundles of 1 to 1000 muscles on their own Muscle Drives, sparse against
 /usr/bin/python3 bench/bench_bundle_scaling.py "$build_dir" bench/bundle_scaling.yaml
 echo "== sweeps: throughput on 1 and 2 threads and under mpirun -n 2, per-run overhead, record compression (targets: parallel efficiency >= 90 %, overhead < 5 %, record within 2x of integration)"
 /usr/bin/python3 bench/bench_sweep.py "$build_dir"
+echo "== fit of the six force-model parameters on 620 s of 16 Hz data (target < 5 s)"
+/usr/bin/python3 bench/bench_fit.py "$build_dir"

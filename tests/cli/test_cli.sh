@@ -108,6 +108,23 @@ expect 2 "spring-forces with a missing file is a usage error" -- "$tcpmsim" spri
 expect 2 "coil-fit with a missing data directory is a usage error" -- "$tcpmsim" coil-fit \
   "$source_dir/configs/springs/s1.yaml" --data "$work/none"
 
+# fit: a measurement (the chapter-7 bench, simulated), a model replaying it, the report.
+discover="$source_dir/configs/discover"
+expect 0 "the chapter-7 bench writes a measurement" -- "$tcpmsim" run "$discover/ch7_protocol.yaml" -o "$work/bench.h5" --quiet
+printf 'time[s],power[W],deflection[mm],force[mN]\n0,1,20,107\n1,1,nan,107\n' >"$work/bad.csv"
+expect 3 "a bad measurement is a data-file error" -- "$tcpmsim" fit "$discover/ch7_fit.yaml" --data "$work/bad.csv" --out "$work/fit"
+contains "$work/err" "bad.csv:3:5: error: field 3 (deflection [mm]): expected a finite number, got 'nan'" "the data error is located"
+[[ ! -e $work/fit ]] && echo "ok: nothing written on a data error" || { echo "FAIL: a fit directory after a data error"; failures=$((failures + 1)); }
+expect 3 "a model without its measurement is a configuration error" -- "$tcpmsim" run "$discover/ch7_base.yaml" -o "$work/none.h5"
+contains "$work/err" "expected a file to replay: 'file', or the scenario's measurement.file" "the error says how to give the measurement"
+expect 0 "the model runs alone with --set measurement.file" -- "$tcpmsim" run "$discover/ch7_base.yaml" --set "measurement.file=$work/bench.h5" -o "$work/base.h5" --quiet
+expect 0 "fit writes its report" -- "$tcpmsim" fit "$discover/ch7_fit.yaml" --data "$work/bench.h5" --out "$work/fit" \
+  --set 'multistart.starts=0' --jobs 2
+contains "$work/out" "muscle.mechanics.k1" "the summary lists the parameters"
+contains "$work/out" "validation     force" "the summary scores the validation window"
+[[ -s $work/fit/fit.json && -s $work/fit/fitted.yaml && -s $work/fit/fit.h5 ]] && echo "ok: fit.json, fitted.yaml, fit.h5" || { echo "FAIL: fit outputs missing"; failures=$((failures + 1)); }
+expect 0 "the fitted scenario runs as it is" -- "$tcpmsim" run "$work/fit/fitted.yaml" -o "$work/fitted.h5" --quiet
+
 if /usr/bin/python3 -c "import h5py, matplotlib" 2>/dev/null; then
   expect 0 "the plot tool reads the record" -- "$source_dir/tools/tcpmsim-plot" traces "$work/run.h5" -o "$work/run.png"
   expect 1 "the plot tool names a channel the record lacks" -- "$source_dir/tools/tcpmsim-plot" traces "$work/run.h5" --channels muscle/colour -o "$work/none.png"
