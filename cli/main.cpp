@@ -220,7 +220,13 @@ int fit(const Options& options) {
   std::error_code error;
   std::filesystem::create_directories(directory, error);
   if (error) throw std::runtime_error("cannot write " + directory + ": " + error.message());
-  const tcpmsim::fit::FitResult result = tcpmsim::fit::fit_model(spec.problem, spec.settings);
+  tcpmsim::fit::FitResult result;
+  try {
+    result = tcpmsim::fit::fit_model(spec.problem, spec.settings);
+  } catch (const tcpmsim::fit::FitFailure& failure) {
+    std::cerr << "tcpmsim: the fit failed: " << failure.what() << "\n";
+    return kSimulationFailed;
+  }
   const auto written = tcpmsim::fit::write_fit_outputs(directory, spec, result);
   if (!options.quiet) {
     std::cout << tcpmsim::fit::fit_summary(spec, result);

@@ -1,5 +1,6 @@
 #include "identification/fit_spec.h"
 
+#include <algorithm>
 #include <filesystem>
 
 #include "kinds/standard_kinds.h"
@@ -36,6 +37,31 @@ TimeWindow read_window(const ConfigNode& root, std::string_view key, const Measu
                       seconds_text(last));
   }
   return {from, to};
+}
+
+// The model must record at least as often as the data are sampled, from before the windows:
+// its outputs are compared at the data's sample times (interpolated between its own).
+void check_output_rate(const ConfigNode& root, const Scenario& model, const MeasuredData& data,
+                       double from) {
+  const auto& time = data.time();
+  std::vector<double> intervals;
+  for (std::size_t k = 1; k < time.size(); ++k) intervals.push_back(time[k] - time[k - 1]);
+  if (intervals.empty()) root.fail("the data hold a single sample; a fit needs a time series");
+  std::nth_element(intervals.begin(), intervals.begin() + static_cast<long>(intervals.size() / 2),
+                   intervals.end());
+  const double sampled = intervals[intervals.size() / 2];
+  if (model.settings.output_interval > sampled * (1 + 1e-9)) {
+    root.at("model").fail(
+        "the model records at " + text_number(1 / model.settings.output_interval, 6) +
+        " Hz, less often than the data are sampled (" + text_number(1 / sampled, 6) +
+        " Hz); set its output.rate to at least that " +
+        "(set: [output.rate=" + text_number(1 / sampled, 6) + " Hz])");
+  }
+  if (model.settings.output_start > from) {
+    root.at("model").fail("the model records from output.start " +
+                          text_number(model.settings.output_start, 6) +
+                          " s, after the identification window starts");
+  }
 }
 
 std::vector<FitOutput> read_outputs(const ConfigNode& root, const Scenario& model,
@@ -150,6 +176,7 @@ FitSpec load_fit(const std::string& file, const std::vector<std::string>& overri
     sweep::blame_set(root, "model", error);
     throw;
   }
+  check_output_rate(root, *model, *data, identification.from);
   spec.problem.model = model;
   spec.problem.data = data;
   spec.problem.identification = identification;

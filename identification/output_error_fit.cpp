@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <numeric>
 #include <sstream>
 
@@ -43,8 +44,11 @@ class Residuals {
     std::vector<std::vector<double>> simulated;
     try {
       simulated = simulate_outputs(problem_, values, problem_.identification);
-    } catch (const std::exception&) {
-      return false;  // a solver failure or a value the model refuses: a step Ceres must reject
+    } catch (const std::exception& error) {
+      // A solver failure or a value the model refuses: a step Ceres must reject.
+      const std::lock_guard lock(mutex_);
+      if (first_failure_.empty()) first_failure_ = error.what();
+      return false;
     }
     std::size_t at = 0;
     for (std::size_t k = 0; k < measured_.size(); ++k) {
@@ -60,12 +64,18 @@ class Residuals {
     return 0.5 * std::inner_product(residuals.begin(), residuals.end(), residuals.begin(), 0.0);
   }
   int simulations() const { return simulations_; }
+  std::string first_failure() const {
+    const std::lock_guard lock(mutex_);
+    return first_failure_;
+  }
 
  private:
   const FitProblem& problem_;
   std::vector<std::vector<double>> measured_;
   std::size_t count_ = 0;
   mutable std::atomic<int> simulations_{0};
+  mutable std::mutex mutex_;
+  mutable std::string first_failure_;
 };
 
 // The residuals of one simulation and their forward-difference Jacobian in the unit
@@ -318,7 +328,8 @@ FitResult fit_model(const FitProblem& problem, const FitSettings& settings) {
     if (candidate.cost < best.cost) best = std::move(candidate);
   }
   if (!std::isfinite(best.cost)) {
-    throw std::runtime_error("the model could not be simulated at any starting point");
+    throw FitFailure("the model could not be simulated at any starting point; the first failure: " +
+                     residuals.first_failure());
   }
 
   FitResult result;
@@ -339,7 +350,8 @@ FitResult fit_model(const FitProblem& problem, const FitSettings& settings) {
   double* jacobian_pointer = jacobian_values.data();
   const double* theta = best.theta.data();
   if (!cost.Evaluate(&theta, r.data(), &jacobian_pointer)) {
-    throw std::runtime_error("the model could not be simulated around the estimate");
+    throw FitFailure("the model could not be simulated around the estimate: " +
+                     residuals.first_failure());
   }
   Eigen::MatrixXd jacobian(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(n));
   for (std::size_t i = 0; i < m; ++i) {

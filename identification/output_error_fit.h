@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,13 @@ struct FitResult {
   std::string termination;
   WindowScore identification;
   WindowScore validation;
+};
+
+// The model could not be simulated where the fit needed it (at every starting point, or around
+// the estimate); the message says why, from the first failure.
+class FitFailure : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 // Levenberg-Marquardt (Ceres) from a seeded multistart, with forward-difference gradients run

@@ -223,11 +223,16 @@ identification: [0 s, 400 s]
         file +
             ":4:17: error: identification: the window [0 s, 700 s] is not inside the data, "
             "which run from 0 s to 620 s");
+  CHECK(fit_file_error(valid + "set: [output.rate=10 Hz]\n", data) ==
+        file +
+            ":1:8: error: model: the model records at 10 Hz, less often than the data are "
+            "sampled (16 Hz); set its output.rate to at least that (set: [output.rate=16 Hz])");
   CHECK(fit_file_error(valid + "set: [muscle.mechanics.k1=-1 N/m]\n", data)
             .starts_with(file + ":5:7: error: set[0]: scenario 'model' does not take it"));
 }
 
-TEST_CASE("The fitted scenario runs and reproduces the fitted outputs; the report holds them") {
+TEST_CASE("A fit on two threads writes a report whose fitted scenario reruns to the fitted outputs",
+          "[thread]") {
   const std::string data = protocol_measurement(1e-3, 5);
   const auto path = fit_directory() / "short.yaml";
   std::ofstream(path) << "model: " << source_path("configs/discover/ch7_base.yaml") << R"(
