@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <thread>
 
@@ -13,9 +14,11 @@
 #include "analysis/control_tasks_command.h"
 #include "analysis/spring_forces_command.h"
 #include "cli/progress.h"
+#include "identification/bench_measurement.h"
 #include "identification/fit_report.h"
 #include "kinds/standard_kinds.h"
 #include "sim/config/config_error.h"
+#include "sim/io/hdf5_files.h"
 #include "sim/kind_listing.h"
 #include "sim/run.h"
 #include "sweep/batch_run.h"
@@ -50,6 +53,7 @@ struct Options {
   int jobs = 1;
   std::string data;           // fit: the measurement, in place of the fit file's
   std::string fit_directory;  // fit: where its outputs go
+  std::string bench;          // measure: the bench file
   int fit_jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 };
 
@@ -235,6 +239,26 @@ int fit(const Options& options) {
   return kSuccess;
 }
 
+// A synthetic measurement: a scenario read by a bench's instruments, written as a CSV file.
+int measure(const Options& options) {
+  auto units = std::make_shared<tcpmsim::UnitSystem>();
+  const tcpmsim::Scenario scenario = load(options);
+  const tcpmsim::fit::Bench bench = tcpmsim::fit::load_bench(options.bench, scenario, units);
+  const std::string output =
+      options.output.empty() ? "results/" + scenario.settings.name + ".csv" : options.output;
+  tcpmsim::create_parent_directories(output);
+  const std::string partial = tcpmsim::partial_path(output);
+  {
+    std::ofstream file(partial);
+    if (!file) throw std::runtime_error("cannot write " + partial);
+    file << tcpmsim::fit::measure(scenario, bench, *units);
+    if (!file) throw std::runtime_error("cannot write " + partial);
+  }
+  std::filesystem::rename(partial, output);
+  if (!options.quiet) std::cout << "wrote " << output << "\n";
+  return kSuccess;
+}
+
 int report_errors(int (*command)(const Options&), const Options& options);
 
 // Under an MPI launcher every rank meets the same bad input: rank 0 alone says so.
@@ -401,6 +425,16 @@ int main(int argc, char** argv) {
                           "Finish an interrupted sweep: redo only the runs not done");
   sweep_command->add_flag("-q,--quiet", options.quiet, "No progress or summary");
 
+  CLI::App* measure_command = app.add_subcommand(
+      "measure", "Run a scenario and read it with a bench's instruments: a measurement CSV");
+  add_common(*measure_command, options);
+  measure_command->add_option("--bench", options.bench, "Bench file (YAML): channels, noise")
+      ->required()
+      ->check(CLI::ExistingFile);
+  measure_command->add_option("-o,--output", options.output,
+                              "Output file (default: results/<scenario name>.csv)");
+  measure_command->add_flag("-q,--quiet", options.quiet, "No summary");
+
   CLI::App* fit_command = app.add_subcommand(
       "fit", "Fit a model's parameters to a measurement (output error, Levenberg-Marquardt)");
   fit_command->add_option("fit", options.config, "Fit file (YAML)")
@@ -435,5 +469,6 @@ int main(int argc, char** argv) {
   if (control_tasks_command->parsed()) return guarded(control_tasks, options);
   if (sweep_command->parsed()) return guarded(sweep, options);
   if (fit_command->parsed()) return guarded(fit, options);
+  if (measure_command->parsed()) return guarded(measure, options);
   return guarded(validate, options);
 }

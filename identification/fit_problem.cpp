@@ -10,29 +10,6 @@ namespace tcpmsim::fit {
 
 namespace {
 
-// Keeps the chosen outputs of a run at its output times.
-class OutputPicker final : public OutputSink {
- public:
-  OutputPicker(const System& system, const std::vector<FitOutput>& outputs) {
-    for (const auto& output : outputs) {
-      const int index = system.signal_index(output.output);
-      if (index < 0) throw std::invalid_argument("the model has no output " + output.output);
-      indices_.push_back(index);
-    }
-    values.resize(indices_.size());
-  }
-  void record(double time, std::span<const double> signals) override {
-    times.push_back(time);
-    for (std::size_t k = 0; k < indices_.size(); ++k)
-      values[k].push_back(signals[static_cast<std::size_t>(indices_[k])]);
-  }
-  std::vector<double> times;
-  std::vector<std::vector<double>> values;
-
- private:
-  std::vector<int> indices_;
-};
-
 // `values` (at `times`) at `at`: the sample itself when `at` is an output instant, else the
 // straight line between the two around it.
 double value_at(const std::vector<double>& times, const std::vector<double>& values, double at) {
@@ -46,6 +23,21 @@ double value_at(const std::vector<double>& times, const std::vector<double>& val
 }
 
 }  // namespace
+
+OutputPicker::OutputPicker(const System& system, const std::vector<std::string>& outputs) {
+  for (const auto& output : outputs) {
+    const int index = system.signal_index(output);
+    if (index < 0) throw std::invalid_argument("the model has no output " + output);
+    indices_.push_back(index);
+  }
+  values.resize(indices_.size());
+}
+
+void OutputPicker::record(double time, std::span<const double> signals) {
+  times.push_back(time);
+  for (std::size_t k = 0; k < indices_.size(); ++k)
+    values[k].push_back(signals[static_cast<std::size_t>(indices_[k])]);
+}
 
 std::pair<std::size_t, std::size_t> samples_in(const MeasuredData& data, const TimeWindow& window) {
   const auto& time = data.time();
@@ -62,7 +54,9 @@ std::vector<std::vector<double>> simulate_outputs(const FitProblem& problem,
   Context context = problem.model->make_context();
   for (std::size_t j = 0; j < problem.parameters.size(); ++j)
     context.set_parameter(problem.parameters[j].path, values[j]);
-  OutputPicker picker(*problem.model->system, problem.outputs);
+  std::vector<std::string> outputs;
+  for (const auto& output : problem.outputs) outputs.push_back(output.output);
+  OutputPicker picker(*problem.model->system, outputs);
   integrate(*problem.model, context, picker);
   const auto [first, last] = samples_in(*problem.data, window);
   std::vector<std::vector<double>> sampled(problem.outputs.size());

@@ -43,6 +43,19 @@ struct FitProblem {
   TimeWindow validation;  // from == to: none
 };
 
+// Keeps the chosen outputs ("load.force") of a run at its output times.
+class OutputPicker final : public OutputSink {
+ public:
+  // Throws std::invalid_argument for an output the system does not have.
+  OutputPicker(const System& system, const std::vector<std::string>& outputs);
+  void record(double time, std::span<const double> signals) override;
+  std::vector<double> times;
+  std::vector<std::vector<double>> values;  // by output
+
+ private:
+  std::vector<int> indices_;
+};
+
 // The model outputs at the measurement's samples inside a window, one vector per output; a run
 // of `problem.model` in a context with `values` set for the fitted parameters (SI). Throws
 // SolverFailure or ParameterError when the model cannot run at `values`.

@@ -8,6 +8,7 @@
 
 #include <unistd.h>
 
+#include "identification/bench_measurement.h"
 #include "identification/fit_spec.h"
 #include "sim/run.h"
 #include "sweep/sweep_spec.h"
@@ -27,6 +28,11 @@ bool is_sweep_file(const std::filesystem::path& path) {
 // A fit file (configs/discover/*_fit.yaml) names a model and a measurement.
 bool is_fit_file(const std::filesystem::path& path) {
   return YAML::LoadFile(path.string())["model"].IsDefined();
+}
+
+// A bench file (configs/discover/*_bench.yaml) lists instruments, for `tcpmsim measure`.
+bool is_bench_file(const std::filesystem::path& path) {
+  return YAML::LoadFile(path.string())["channels"].IsDefined();
 }
 
 // The chapter-7 protocol's record: the measurement that model scenarios (whose data signals
@@ -55,7 +61,8 @@ std::vector<std::filesystem::path> scenario_files() {
   for (const auto& entry : std::filesystem::recursive_directory_iterator(source_path("configs"))) {
     if (entry.path().extension() != ".yaml") continue;
     if (entry.path().parent_path().filename() == "springs") continue;  // geometry files
-    if (is_sweep_file(entry.path()) || is_fit_file(entry.path())) continue;
+    if (is_sweep_file(entry.path()) || is_fit_file(entry.path()) || is_bench_file(entry.path()))
+      continue;
     files.push_back(entry.path());
   }
   std::sort(files.begin(), files.end());
@@ -117,6 +124,19 @@ TEST_CASE("Every fit file in configs/ loads its model, outputs and parameters") 
         fit::load_fit(entry.path().string(), {}, protocol_record(), 1, shared_units());
     CHECK(!spec.problem.outputs.empty());
     CHECK(!spec.problem.parameters.empty());
+    ++count;
+  }
+  CHECK(count >= 1);
+}
+
+TEST_CASE("Every bench file in configs/ reads the chapter-7 base model") {
+  const Scenario model = load_scenario(source_path("configs/discover/ch7_base.yaml"),
+                                       with_measurement(), shared_units());
+  int count = 0;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(source_path("configs"))) {
+    if (entry.path().extension() != ".yaml" || !is_bench_file(entry.path())) continue;
+    INFO(entry.path().filename().string());
+    CHECK(!fit::load_bench(entry.path().string(), model, shared_units()).instruments.empty());
     ++count;
   }
   CHECK(count >= 1);

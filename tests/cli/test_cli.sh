@@ -118,6 +118,12 @@ contains "$work/err" "bad.csv:3:5: error: field 3 (deflection [mm]): expected a 
 expect 3 "a model without its measurement is a configuration error" -- "$tcpmsim" run "$discover/ch7_base.yaml" -o "$work/none.h5"
 contains "$work/err" "expected a file to replay: 'file', or the scenario's measurement.file" "the error says how to give the measurement"
 expect 0 "the model runs alone with --set measurement.file" -- "$tcpmsim" run "$discover/ch7_base.yaml" --set "measurement.file=$work/bench.h5" -o "$work/base.h5" --quiet
+expect 0 "measure reads the model with the bench's instruments" -- "$tcpmsim" measure "$discover/ch7_base.yaml" \
+  --set "measurement.file=$work/bench.h5" --bench "$discover/ch7_bench.yaml" -o "$work/measured.csv" --quiet
+head -1 "$work/measured.csv" >"$work/header"
+contains "$work/header" "time[s],power[W],deflection[mm],force[mN],inductance_measure[1]" "the measurement's headings name channels and units"
+expect 0 "fit takes the synthetic measurement" -- "$tcpmsim" fit "$discover/ch7_fit.yaml" --data "$work/measured.csv" \
+  --out "$work/fit_measured" --set 'multistart.starts=0' --jobs 2 --quiet
 expect 0 "fit writes its report" -- "$tcpmsim" fit "$discover/ch7_fit.yaml" --data "$work/bench.h5" --out "$work/fit" \
   --set 'multistart.starts=0' --jobs 2
 contains "$work/out" "muscle.mechanics.k1" "the summary lists the parameters"

@@ -1,0 +1,117 @@
+#include "identification/bench_measurement.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "identification/fit_problem.h"
+#include "sim/config/config_node.h"
+#include "sim/io/measured_data.h"
+#include "sim/random_stream.h"
+#include "sim/run.h"
+
+namespace tcpmsim::fit {
+
+namespace {
+
+Instrument read_instrument(const ConfigNode& entry, const Scenario& scenario) {
+  entry.declare({"channel", "output", "unit", "noise", "resolution", "spikes"});
+  Instrument instrument;
+  instrument.channel = entry.text("channel");
+  if (!measured_quantity_of(instrument.channel) || instrument.channel == "time") {
+    entry.at("channel").fail(
+        "expected a measured quantity (power, deflection, force, "
+        "decay_time, ...; left.force for an instance), got '" +
+        instrument.channel + "'");
+  }
+  instrument.output = entry.text("output");
+  const int index = scenario.system->signal_index(instrument.output);
+  if (index < 0) {
+    entry.at("output").fail("the scenario has no output '" + instrument.output +
+                            "' (outputs are named group.name, as in its record)");
+  }
+  instrument.si_unit = scenario.system->channels()[static_cast<std::size_t>(index)].unit;
+  const std::string quantity_unit(measured_quantity_of(instrument.channel)->si_unit);
+  if (!entry.units().convertible(instrument.si_unit, quantity_unit)) {
+    entry.at("output").fail("output '" + instrument.output + "' is in " + instrument.si_unit +
+                            "; channel '" + instrument.channel + "' measures " + quantity_unit);
+  }
+  instrument.unit = entry.text("unit");
+  if (!entry.units().convertible(instrument.unit, quantity_unit)) {
+    entry.at("unit").fail("'" + instrument.unit + "' is not a unit of " + quantity_unit);
+  }
+  instrument.noise =
+      entry.quantity_or("noise", instrument.si_unit, 0.0, ValueCheck::non_negative());
+  instrument.resolution =
+      entry.quantity_or("resolution", instrument.si_unit, 0.0, ValueCheck::non_negative());
+  if (const auto spikes = entry.find("spikes")) {
+    spikes->declare({"probability", "size"});
+    instrument.spike_probability = spikes->number("probability", ValueCheck::between(0.0, 1.0));
+    instrument.spike_size = spikes->quantity("size", instrument.si_unit, ValueCheck::positive());
+  }
+  return instrument;
+}
+
+// One reading: the true value, a spike now and then, normal noise, then the resolution.
+double read(const Instrument& instrument, double value, RandomStream& stream) {
+  if (instrument.spike_probability > 0 && stream.chance(instrument.spike_probability))
+    value += stream.chance(0.5) ? instrument.spike_size : -instrument.spike_size;
+  if (instrument.noise > 0) value += instrument.noise * stream.normal();
+  if (instrument.resolution > 0)
+    value = instrument.resolution * std::round(value / instrument.resolution);
+  return value;
+}
+
+}  // namespace
+
+Bench load_bench(const std::string& file, const Scenario& scenario,
+                 std::shared_ptr<const UnitSystem> units) {
+  const ConfigNode root = ConfigNode::load_file(file, {}, units);
+  root.declare({"seed", "channels"});
+  Bench bench;
+  bench.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, ValueCheck::non_negative()));
+  const ConfigNode channels = root.at("channels");
+  if (channels.elements().empty()) channels.fail("expected at least one channel");
+  for (const ConfigNode& entry : channels.elements()) {
+    bench.instruments.push_back(read_instrument(entry, scenario));
+    for (std::size_t k = 0; k + 1 < bench.instruments.size(); ++k) {
+      if (bench.instruments[k].channel == bench.instruments.back().channel)
+        entry.at("channel").fail("channel '" + bench.instruments.back().channel +
+                                 "' is measured twice");
+    }
+  }
+  root.reject_unknown_keys();
+  return bench;
+}
+
+std::string measure(const Scenario& scenario, const Bench& bench, const UnitSystem& units) {
+  std::vector<std::string> outputs;
+  for (const auto& instrument : bench.instruments) outputs.push_back(instrument.output);
+  OutputPicker picker(*scenario.system, outputs);
+  integrate(scenario, picker);
+  std::string text = "time[s]";
+  std::vector<std::vector<double>> readings;
+  for (std::size_t k = 0; k < bench.instruments.size(); ++k) {
+    const auto& instrument = bench.instruments[k];
+    text += "," + instrument.channel + "[" + instrument.unit + "]";
+    RandomStream stream(bench.seed, "instrument " + instrument.channel);
+    const auto to_unit = units.converter(instrument.si_unit, instrument.unit);
+    std::vector<double> column;
+    for (double value : picker.values[k])
+      column.push_back(to_unit(read(instrument, value, stream)));
+    readings.push_back(std::move(column));
+  }
+  text += "\n";
+  char field[32];
+  for (std::size_t i = 0; i < picker.times.size(); ++i) {
+    std::snprintf(field, sizeof field, "%.17g", picker.times[i]);
+    text += field;
+    for (const auto& column : readings) {
+      std::snprintf(field, sizeof field, ",%.17g", column[i]);
+      text += field;
+    }
+    text += "\n";
+  }
+  return text;
+}
+
+}  // namespace tcpmsim::fit
