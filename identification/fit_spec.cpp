@@ -163,6 +163,13 @@ FitSpec load_fit(const std::string& file, const std::vector<std::string>& overri
   TimeWindow identification = read_window(root, "identification", *data);
   TimeWindow validation = root.has("validation") ? read_window(root, "validation", *data)
                                                  : TimeWindow{identification.to, identification.to};
+  if (root.has("validation") && validation.from < identification.to &&
+      identification.from < validation.to) {
+    root.at("validation")
+        .fail("the validation window overlaps the identification window [" +
+              seconds_text(identification.from) + ", " + seconds_text(identification.to) +
+              "]; data the fit has seen cannot validate it");
+  }
   const double end = std::max(identification.to, validation.to);
   std::vector<std::string> model_overrides = sweep::read_set(root);
   model_overrides.push_back("measurement.file=" +

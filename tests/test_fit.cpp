@@ -217,6 +217,10 @@ identification: [0 s, 400 s]
         file +
             ":4:17: error: identification: the window [0 s, 700 s] is not inside the data, "
             "which run from 0 s to 620 s");
+  CHECK(fit_file_error(valid + "validation: [300 s, 620 s]\n", data) ==
+        file +
+            ":5:13: error: validation: the validation window overlaps the identification "
+            "window [0 s, 400 s]; data the fit has seen cannot validate it");
   CHECK(fit_file_error(valid + "set: [output.rate=10 Hz]\n", data) ==
         file +
             ":1:8: error: model: the model records at 10 Hz, less often than the data are "
