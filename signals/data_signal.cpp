@@ -33,6 +33,27 @@ std::string coverage_problem(const DataSignal& signal, double first, double orig
   return "";
 }
 
+// The samples where a held value changes, or where the slope of the lines through them does
+// (constant before the first sample and after the last).
+std::vector<double> jumps(const std::vector<double>& times, const std::vector<double>& values,
+                          DataInterpolation interpolation) {
+  std::vector<double> breakpoints;
+  const std::size_t n = times.size();
+  if (interpolation == DataInterpolation::hold) {
+    for (std::size_t k = 1; k < n; ++k) {
+      if (values[k] != values[k - 1]) breakpoints.push_back(times[k]);
+    }
+    return breakpoints;
+  }
+  double before = 0.0;  // the slope before sample k
+  for (std::size_t k = 0; k < n; ++k) {
+    const double after = k + 1 < n ? (values[k + 1] - values[k]) / (times[k + 1] - times[k]) : 0.0;
+    if (after != before) breakpoints.push_back(times[k]);
+    before = after;
+  }
+  return breakpoints;
+}
+
 }  // namespace
 
 DataSignal::DataSignal(std::shared_ptr<const Samples> samples, DataInterpolation interpolation,
@@ -44,6 +65,7 @@ DataSignal::DataSignal(std::shared_ptr<const Samples> samples, DataInterpolation
   if (samples_->times.empty() || samples_->times.size() != samples_->values.size()) {
     throw std::invalid_argument("data signal: need equally many times and values");
   }
+  breakpoints_ = jumps(times_, samples_->values, interpolation_);
 }
 
 long DataSignal::sample_at(double time) const {
@@ -70,8 +92,8 @@ double DataSignal::slope(double time) const {
 }
 
 double DataSignal::next_breakpoint_after(double time) const {
-  const auto after = std::upper_bound(times_.begin(), times_.end(), time);
-  return after == times_.end() ? kNoBreakpoint : *after;
+  const auto after = std::upper_bound(breakpoints_.begin(), breakpoints_.end(), time);
+  return after == breakpoints_.end() ? kNoBreakpoint : *after;
 }
 
 SignalDescription DataSignal::describe() const {

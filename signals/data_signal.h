@@ -14,8 +14,9 @@ namespace tcpmsim {
 enum class DataInterpolation { hold, linear };
 
 // A measured channel replayed as a signal: the samples are its breakpoints, held (zero-order
-// hold) or joined by straight lines. Sample time `origin` of the data is the scenario's t = 0.
-// Beyond the last sample the last value holds; before the first, the first.
+// hold) or joined by straight lines (a sample where nothing jumps is none). Sample time `origin` of
+// the data is the scenario's t = 0. Beyond the last sample the last value holds; before the first,
+// the first.
 class DataSignal final : public Signal {
  public:
   struct Samples {
@@ -40,6 +41,9 @@ class DataSignal final : public Signal {
 
   std::shared_ptr<const Samples> samples_;
   std::vector<double> times_;  // the samples' times on the scenario's clock (data time - origin)
+  // The samples where the value (hold) or the slope (linear) jumps: a sample that continues
+  // the line or level before it is no breakpoint, so a long constant stretch costs no restarts.
+  std::vector<double> breakpoints_;
   DataInterpolation interpolation_;
   double origin_;
 };
