@@ -169,6 +169,9 @@ Refined refine(const FitProblem& problem, const Residuals& residuals, const FitS
   options.parameter_tolerance = 1e-8;
   options.gradient_tolerance = 1e-12;
   options.logging_type = ceres::SILENT;
+  // The projected step of a bounded problem is searched with Armijo; cubic interpolation would
+  // ask for a Jacobian (n + 1 simulations) at every trial point, bisection for values only.
+  options.line_search_interpolation_type = ceres::BISECTION;
   ceres::Solver::Summary summary;
   ceres::Solve(options, &ceres_problem, &summary);
   return {theta, summary.final_cost, static_cast<int>(summary.iterations.size()),
