@@ -15,6 +15,7 @@ packages=(
   libopenmpi-dev openmpi-bin               # sweeps on clusters: mpirun -n K tcpmsim sweep
   libceres-dev                             # fit: Levenberg-Marquardt with bounds (Ceres Solver)
   nlohmann-json3-dev                       # fit and discover reports as JSON
+  libboost-dev                             # Boost.Math: the chi-squared tail of the Ljung-Box test
   python3 python3-h5py python3-numpy python3-matplotlib python3-scipy  # plots, benchmark
 )
 
