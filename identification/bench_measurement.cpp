@@ -1,7 +1,6 @@
 #include "identification/bench_measurement.h"
 
 #include <cmath>
-#include <cstdio>
 
 #include "identification/fit_problem.h"
 #include "sim/config/config_node.h"
@@ -24,12 +23,7 @@ Instrument read_instrument(const ConfigNode& entry, const Scenario& scenario) {
         instrument.channel + "'");
   }
   instrument.output = entry.text("output");
-  const int index = scenario.system->signal_index(instrument.output);
-  if (index < 0) {
-    entry.at("output").fail("the scenario has no output '" + instrument.output +
-                            "' (outputs are named group.name, as in its record)");
-  }
-  instrument.si_unit = scenario.system->channels()[static_cast<std::size_t>(index)].unit;
+  instrument.si_unit = named_output(*scenario.system, entry.at("output"), "scenario").unit;
   const std::string quantity_unit(measured_quantity_of(instrument.channel)->si_unit);
   if (!entry.units().convertible(instrument.si_unit, quantity_unit)) {
     entry.at("output").fail("output '" + instrument.output + "' is in " + instrument.si_unit +
@@ -101,13 +95,11 @@ std::string measure(const Scenario& scenario, const Bench& bench, const UnitSyst
     readings.push_back(std::move(column));
   }
   text += "\n";
-  char field[32];
   for (std::size_t i = 0; i < picker.times.size(); ++i) {
-    std::snprintf(field, sizeof field, "%.17g", picker.times[i]);
-    text += field;
+    text += number_text(picker.times[i], 17);
     for (const auto& column : readings) {
-      std::snprintf(field, sizeof field, ",%.17g", column[i]);
-      text += field;
+      text += ',';
+      text += number_text(column[i], 17);
     }
     text += "\n";
   }

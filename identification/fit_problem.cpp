@@ -24,6 +24,17 @@ double value_at(const std::vector<double>& times, const std::vector<double>& val
 
 }  // namespace
 
+const ChannelInfo& named_output(const System& system, const ConfigNode& node,
+                                std::string_view owner) {
+  const std::string output = node.as_text();
+  const int index = system.signal_index(output);
+  if (index < 0) {
+    node.fail("the " + std::string(owner) + " has no output '" + output +
+              "' (outputs are named group.name, as in its record)");
+  }
+  return system.channels()[static_cast<std::size_t>(index)];
+}
+
 OutputPicker::OutputPicker(const System& system, const std::vector<std::string>& outputs) {
   for (const auto& output : outputs) {
     const int index = system.signal_index(output);

@@ -2,6 +2,7 @@
 
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "sim/io/measured_data.h"
@@ -42,6 +43,11 @@ struct FitProblem {
   TimeWindow identification;
   TimeWindow validation;  // from == to: none
 };
+
+// The output of `system` a file names at `node` ("load.force"), or a located error saying that
+// the `owner` ("model", "scenario") has none.
+const ChannelInfo& named_output(const System& system, const ConfigNode& node,
+                                std::string_view owner);
 
 // Keeps the chosen outputs ("load.force") of a run at its output times.
 class OutputPicker final : public OutputSink {

@@ -17,13 +17,6 @@ namespace tcpmsim::fit {
 
 namespace {
 
-std::string text_number(double value, int digits = 10) {
-  std::ostringstream text;
-  text.precision(digits);
-  text << value;
-  return text.str();
-}
-
 nlohmann::json number_or_null(double value) {
   return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
@@ -44,9 +37,9 @@ std::string window_lines(const FitSpec& spec, const char* name, const TimeWindow
   for (std::size_t k = 0; k < score.rmse.size(); ++k) {
     const auto& output = spec.problem.outputs[k];
     out << "  " << std::left << std::setw(15) << name << std::setw(13) << output.channel << "["
-        << text_number(window.from, 6) << " s, " << text_number(window.to, 6) << " s]  RMSE "
-        << text_number(score.rmse[k], 4) << " " << output.unit << ", NRMSE "
-        << text_number(score.nrmse[k], 4) << ", R2 " << text_number(score.r2[k], 6) << "\n";
+        << number_text(window.from, 6) << " s, " << number_text(window.to, 6) << " s]  RMSE "
+        << number_text(score.rmse[k], 4) << " " << output.unit << ", NRMSE "
+        << number_text(score.nrmse[k], 4) << ", R2 " << number_text(score.r2[k], 6) << "\n";
   }
   return out.str();
 }
@@ -71,14 +64,6 @@ YAML::Node node_at(YAML::Node node, const std::string& path) {
   return node;
 }
 
-std::vector<std::string> instance_sections() {
-  std::vector<std::string> sections;
-  const KindRegistry kinds = standard_kinds();
-  for (const Category& category : kinds.categories())
-    if (category.top_level()) sections.push_back(category.plural);
-  return sections;
-}
-
 }  // namespace
 
 std::string fit_summary(const FitSpec& spec, const FitResult& result) {
@@ -90,9 +75,9 @@ std::string fit_summary(const FitSpec& spec, const FitResult& result) {
       << "unit\n";
   for (const auto& estimate : result.estimates) {
     out << "  " << std::setw(36) << estimate.path << std::setw(16)
-        << text_number(estimate.initial, 6) << std::setw(16) << text_number(estimate.value, 6)
+        << number_text(estimate.initial, 6) << std::setw(16) << number_text(estimate.value, 6)
         << std::setw(14)
-        << (estimate.identifiable ? text_number(estimate.standard_error, 3) : "unidentified")
+        << (estimate.identifiable ? number_text(estimate.standard_error, 3) : "unidentified")
         << estimate.unit << "\n";
   }
   for (const auto& problem : result.identifiability) out << "  not identified: " << problem << "\n";
@@ -136,10 +121,10 @@ std::string fit_json(const FitSpec& spec, const FitResult& result) {
 
 std::string fitted_scenario_yaml(const FitSpec& spec, const FitResult& result) {
   YAML::Node root = YAML::Load(spec.problem.model->resolved_yaml);
-  const auto sections = instance_sections();
+  const auto sections = instance_sections(standard_kinds());
   for (const auto& estimate : result.estimates) {
     node_at(root, expand_instance_path(root, estimate.path, sections)) =
-        text_number(estimate.value, 17) + " " + estimate.unit;
+        number_text(estimate.value, 17) + " " + estimate.unit;
   }
   YAML::Emitter out;
   out << root;

@@ -11,13 +11,6 @@ namespace tcpmsim::fit {
 
 namespace {
 
-// %g to `digits` significant digits: 17 round-trips a double.
-std::string text_number(double value, int digits = 17) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
-  return buffer;
-}
-
 // A YAML single-quoted scalar: any path, whatever characters it holds.
 std::string single_quoted(const std::string& text) {
   std::string quoted = "'";
@@ -52,14 +45,14 @@ void check_output_rate(const ConfigNode& root, const Scenario& model, const Meas
   const double sampled = intervals[intervals.size() / 2];
   if (model.settings.output_interval > sampled * (1 + 1e-9)) {
     root.at("model").fail(
-        "the model records at " + text_number(1 / model.settings.output_interval, 6) +
-        " Hz, less often than the data are sampled (" + text_number(1 / sampled, 6) +
+        "the model records at " + number_text(1 / model.settings.output_interval, 6) +
+        " Hz, less often than the data are sampled (" + number_text(1 / sampled, 6) +
         " Hz); set its output.rate to at least that " +
-        "(set: [output.rate=" + text_number(1 / sampled, 6) + " Hz])");
+        "(set: [output.rate=" + number_text(1 / sampled, 6) + " Hz])");
   }
   if (model.settings.output_start > from) {
     root.at("model").fail("the model records from output.start " +
-                          text_number(model.settings.output_start, 6) +
+                          number_text(model.settings.output_start, 6) +
                           " s, after the identification window starts");
   }
 }
@@ -74,12 +67,7 @@ std::vector<FitOutput> read_outputs(const ConfigNode& root, const Scenario& mode
     FitOutput output;
     output.channel = entry.text("channel");
     output.output = entry.text("output");
-    const int index = model.system->signal_index(output.output);
-    if (index < 0) {
-      entry.at("output").fail("the model has no output '" + output.output +
-                              "' (outputs are named group.name, as in its record)");
-    }
-    output.unit = model.system->channels()[static_cast<std::size_t>(index)].unit;
+    output.unit = named_output(*model.system, entry.at("output"), "model").unit;
     const MeasuredChannel* channel = data.find(output.channel);
     if (!channel) entry.at("channel").fail(data.missing_channel(output.channel));
     if (!root.units().convertible(channel->unit, output.unit) ||
@@ -117,7 +105,7 @@ std::vector<FitParameter> read_parameters(const ConfigNode& root, const Scenario
     std::tie(parameter.lower, parameter.upper) = entry.interval("bounds", parameter.unit);
     const double value = context.parameter(parameter.path);
     if (value < parameter.lower || value > parameter.upper) {
-      entry.at("bounds").fail("the model's value " + text_number(value, 10) + " " + parameter.unit +
+      entry.at("bounds").fail("the model's value " + number_text(value, 10) + " " + parameter.unit +
                               " is outside the bounds");
     }
     for (const double bound : {parameter.lower, parameter.upper}) {
@@ -174,7 +162,7 @@ FitSpec load_fit(const std::string& file, const std::vector<std::string>& overri
   std::vector<std::string> model_overrides = sweep::read_set(root);
   model_overrides.push_back("measurement.file=" +
                             single_quoted(std::filesystem::absolute(spec.data_file).string()));
-  model_overrides.push_back("scenario.duration=" + text_number(end) + " s");
+  model_overrides.push_back("scenario.duration=" + number_text(end, 17) + " s");
   std::shared_ptr<const Scenario> model;
   try {
     model =

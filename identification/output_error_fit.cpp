@@ -8,9 +8,9 @@
 #include <limits>
 #include <mutex>
 #include <numeric>
-#include <sstream>
 
 #include "sim/parallel_runs.h"
+#include "sim/value_check.h"
 #include "sweep/sweep_design.h"
 
 namespace tcpmsim::fit {
@@ -219,13 +219,6 @@ WindowScore score(const std::vector<std::vector<double>>& simulated,
     result.r2.push_back(sst > 0 ? 1.0 - sse / sst : kNaN);
   }
   return result;
-}
-
-std::string number_text(double value, int digits = 4) {
-  std::ostringstream text;
-  text.precision(digits);
-  text << value;
-  return text.str();
 }
 
 // Standard errors and correlations from the weighted Jacobian J (m x n, per SI unit of each

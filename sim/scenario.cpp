@@ -139,15 +139,14 @@ std::optional<int> parameter_of(const Assignment& assignment, const System& syst
   return index;
 }
 
-// The sections whose keys are instances' names, where a --set path may start from a name.
+}  // namespace
+
 std::vector<std::string> instance_sections(const KindRegistry& kinds) {
   std::vector<std::string> sections;
   for (const Category& category : kinds.categories())
     if (category.top_level()) sections.push_back(category.plural);
   return sections;
 }
-
-}  // namespace
 
 Scenario build_scenario(const ConfigNode& root, const KindRegistry& kinds) {
   Scenario scenario;

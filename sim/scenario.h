@@ -30,6 +30,10 @@ struct Scenario {
   Context make_context() const;
 };
 
+// The sections whose keys are instances' names ("muscles", "drives"): where a --set path may
+// start from an instance's name (see expand_instance_path).
+std::vector<std::string> instance_sections(const KindRegistry& kinds);
+
 // Builds a scenario from a parsed document, asking `kinds` for every section's kind; throws
 // ConfigError on any bad input.
 Scenario build_scenario(const ConfigNode& root, const KindRegistry& kinds);

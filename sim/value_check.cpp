@@ -48,6 +48,13 @@ std::string number_text(double value) {
   return out.str();
 }
 
+std::string number_text(double value, int digits) {
+  std::ostringstream out;
+  out.precision(digits);
+  out << value;
+  return out.str();
+}
+
 std::string ValueCheck::problem(double value, std::string_view unit,
                                 const std::string& shown) const {
   if (!std::isfinite(value)) return "expected a finite value, got " + shown;

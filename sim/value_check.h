@@ -32,5 +32,7 @@ class ValueCheck {
 
 // A number as messages print it (the default stream format: 0.001, 1e-09, 2.5).
 std::string number_text(double value);
+// The same to `digits` significant digits (%g): 17 round-trips a double through text.
+std::string number_text(double value, int digits);
 
 }  // namespace tcpmsim

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -42,12 +41,6 @@ struct AxisValues {
   Axis axis;
   std::vector<double> values;
 };
-
-std::string number_text(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  return buffer;
-}
 
 std::vector<SweepScenario> read_scenarios(const ConfigNode& root, const std::string& file,
                                           const std::vector<std::string>& overrides,
@@ -180,7 +173,7 @@ std::vector<double> read_axis_values(const ConfigNode& node, const Axis& axis, s
     }
   }
   if (axis.structural) {
-    for (double value : values) texts.push_back(number_text(value));
+    for (double value : values) texts.push_back(number_text(value, 17));
   }
   return values;
 }
@@ -344,7 +337,7 @@ void read_store(const ConfigNode& root, SweepSpec& spec) {
     if (std::abs(ratio - std::round(ratio)) > 1e-9 * ratio || std::round(ratio) < 1.0)
       store->at("interval")
           .fail("must be a multiple of scenario '" + scenario.name + "''s output interval (" +
-                number_text(scenario.scenario->settings.output_interval) + " s)");
+                number_text(scenario.scenario->settings.output_interval, 17) + " s)");
   }
 }
 

@@ -1,9 +1,11 @@
 #include "sim/io/measured_data.h"
 
-#include <fstream>
+#include <filesystem>
+#include <mutex>
 #include <sstream>
 
 #include "sim/config/config_node.h"
+#include "sim/io/hdf5_files.h"
 
 namespace tcpmsim {
 
@@ -66,12 +68,16 @@ std::string seconds_text(double seconds) {
 
 namespace {
 
-// HDF5 files start with this signature (at offset 0 for the files tcpmsim writes).
+// Whether HDF5 itself takes the file for one (it also finds a signature after a user block).
 bool is_hdf5(const std::string& path) {
-  std::ifstream stream(path, std::ios::binary);
-  char signature[8] = {};
-  stream.read(signature, sizeof signature);
-  return stream.gcount() == 8 && std::string_view(signature, 8) == "\x89HDF\r\n\x1a\n";
+  if (!std::filesystem::is_regular_file(path)) return false;
+  const std::lock_guard lock(hdf5_mutex());
+  H5::Exception::dontPrint();
+  try {
+    return H5::H5File::isHdf5(path);
+  } catch (const H5::Exception&) {
+    return false;
+  }
 }
 
 }  // namespace
