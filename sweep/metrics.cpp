@@ -3,7 +3,6 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "analysis/control_tasks.h"
 #include "analysis/statistics.h"
@@ -37,11 +36,6 @@ MetricKind kind_named(const std::string& name) {
 }
 
 // A time for a message: "400", "3756.2".
-std::string seconds_text(double seconds) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", seconds);
-  return text;
-}
 
 const ChannelInfo* recorded_channel(const System& system, const std::string& name) {
   for (const auto& channel : system.channels()) {
@@ -210,12 +204,11 @@ MetricSpec read_metric(const ConfigNode& node, const std::string& scenario_name,
   metric.to = node.quantity_or("to", "s", duration, ValueCheck::positive());
   if (metric.to <= metric.from) {
     if (node.has("to")) node.at("to").fail("the window must end after it starts ('from')");
-    node.at("from").fail("the window starts after the scenario ends (" + seconds_text(duration) +
+    node.at("from").fail("the window starts after the scenario ends (" + number_text(duration) +
                          " s)");
   }
   if (metric.to > duration + kTimeSlack)
-    node.at("to").fail("the window ends after the scenario does (" + seconds_text(duration) +
-                       " s)");
+    node.at("to").fail("the window ends after the scenario does (" + number_text(duration) + " s)");
   if (metric.kind == MetricKind::rise_time) {
     if (node.has("reference"))
       metric.reference = read_channel(node, "reference", scenario_name, scenario);
@@ -243,8 +236,8 @@ MetricSpec read_metric(const ConfigNode& node, const std::string& scenario_name,
       node.at("reference").fail("a bandwidth needs a stepped_sine_sweep reference");
     if (metric.kind == MetricKind::bandwidth && sweep->end_time() > metric.to + kTimeSlack)
       node.at("reference")
-          .fail("the sweep ends at " + seconds_text(sweep->end_time()) +
-                " s, after the scenario does (" + seconds_text(metric.to) + " s)");
+          .fail("the sweep ends at " + number_text(sweep->end_time()) +
+                " s, after the scenario does (" + number_text(metric.to) + " s)");
   }
   return metric;
 }

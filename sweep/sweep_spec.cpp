@@ -408,12 +408,7 @@ SweepSpec load_sweep(const std::string& file, const std::vector<std::string>& ov
   spec.scenarios = read_scenarios(root, file, read_set(root), units);
   read_axes(root, spec.scenarios, units, spec);
   Columns columns = fixed_columns();
-  for (const auto& axis : spec.axes) {
-    const auto [earlier, added] = columns.emplace(summary_column(axis.path), "an axis'");
-    if (!added)
-      root.at("axes").fail("axis '" + axis.path + "''s summary column is already " +
-                           earlier->second);
-  }
+  for (const auto& axis : spec.axes) claim_column(columns, axis.path, "an axis'", root.at("axes"));
   read_derived_list(root, spec, *units, columns);
   read_metrics(root, spec, columns);
   read_store(root, spec);

@@ -265,6 +265,11 @@ TEST_CASE("a run that fails is recorded with its message, and the sweep goes on"
   const auto tau = read_column(output, "tau");
   CHECK(std::isnan(tau[1]));
   CHECK(tau[2] == Approx(0.25 / 0.073).epsilon(1e-6));
+  // The runs that succeeded keep their traces; the failed one has none.
+  const H5::H5File file(output, H5F_ACC_RDONLY);
+  CHECK(file.nameExists("/runs/0"));
+  CHECK_FALSE(file.nameExists("/runs/1"));
+  CHECK(file.nameExists("/runs/2"));
 }
 
 TEST_CASE("a resumed sweep redoes only the missing runs and refuses another sweep's parts",

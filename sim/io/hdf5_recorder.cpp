@@ -32,7 +32,7 @@ Hdf5Recorder::Hdf5Recorder(std::string path, const System& system, const Context
 }
 
 Hdf5Recorder::~Hdf5Recorder() {
-  if (closed_) return;
+  if (!writer_) return;  // closed
   // Neither finished nor failed (an exception unwound past us): leave nothing behind.
   writer_.reset();
   std::error_code ignored;
@@ -59,15 +59,8 @@ void Hdf5Recorder::hand_over() {
 
 void Hdf5Recorder::close_with(const std::string& status, const std::string& reason,
                               const SolverStatistics& statistics) {
-  closed_ = true;
-  try {
-    writer_->close(std::move(buffers_), status, reason, statistics);
-  } catch (...) {
-    writer_.reset();
-    std::error_code ignored;
-    std::filesystem::remove(partial_path(path_), ignored);
-    throw;
-  }
+  // If closing throws, the writer stays, and the destructor removes the partial file.
+  writer_->close(std::move(buffers_), status, reason, statistics);
   writer_.reset();
 }
 

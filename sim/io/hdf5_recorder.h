@@ -55,7 +55,6 @@ class Hdf5Recorder final : public OutputSink {
   std::vector<std::vector<int>> columns_;     // per dataset, its signals ([0], time: none)
   std::vector<std::vector<double>> buffers_;  // per dataset, rows of its columns ([0] is time)
   std::size_t flush_rows_ = 1;
-  bool closed_ = false;
   std::unique_ptr<RecordWriter> writer_;  // its own thread: the file, the datasets, the writes
 };
 
