@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The layers, checked on every include: the engine (sim/) names no model; signals/ and models/
 # build on the engine only (models/ never on controllers/); controllers/ on models/ and the
-# engine; only kinds/ (the standard registry), analysis/, cli/, tests/ and bench/ see it all.
+# engine; kinds/ (the standard registry) sees those; analysis/, sweep/ and identification/
+# (fits and discovery) build on all of them in that order; cli/, tests/ and bench/ see it all.
 # Usage: check_layers.sh SOURCE_DIR
 set -uo pipefail
 cd "$1"
