@@ -6,8 +6,6 @@
 #include <filesystem>
 #include <fstream>
 
-#include <unistd.h>
-
 #include "identification/bench_measurement.h"
 #include "identification/fit_problem.h"
 #include "sim/io/measured_data.h"
@@ -20,10 +18,7 @@ using namespace tcpmsim::testing;
 namespace {
 
 std::filesystem::path bench_directory() {
-  const auto directory = std::filesystem::temp_directory_path() / "tcpmsim_tests" /
-                         ("bench_" + std::to_string(getpid()));
-  std::filesystem::create_directories(directory);
-  return directory;
+  return process_directory("bench");
 }
 
 // The test muscle heated by a power staircase for 1000 s at 10 Hz: 10001 samples.

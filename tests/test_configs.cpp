@@ -6,8 +6,6 @@
 #include <cmath>
 #include <filesystem>
 
-#include <unistd.h>
-
 #include "identification/bench_measurement.h"
 #include "identification/fit_spec.h"
 #include "sim/run.h"
@@ -38,11 +36,8 @@ bool is_bench_file(const std::filesystem::path& path) {
 // The chapter-7 protocol's record: the measurement that model scenarios (whose data signals
 // replay "the measurement") and fit files are run with here.
 std::string protocol_record() {
-  // One per test process: ctest runs cases in parallel processes.
-  const auto path = std::filesystem::temp_directory_path() / "tcpmsim_tests" /
-                    ("ch7_protocol_" + std::to_string(getpid()) + ".h5");
+  const auto path = std::filesystem::path(process_directory("configs")) / "ch7_protocol.h5";
   if (!std::filesystem::exists(path)) {
-    std::filesystem::create_directories(path.parent_path());
     const Scenario protocol =
         load_scenario(source_path("configs/discover/ch7_protocol.yaml"), {}, shared_units());
     REQUIRE(run_scenario(protocol, path.string()).succeeded);

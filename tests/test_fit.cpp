@@ -7,8 +7,6 @@
 #include <filesystem>
 #include <fstream>
 
-#include <unistd.h>
-
 #include "identification/bench_measurement.h"
 #include "identification/fit_report.h"
 #include "sim/run.h"
@@ -20,11 +18,7 @@ using namespace tcpmsim::testing;
 namespace {
 
 std::filesystem::path fit_directory() {
-  // One per test process: ctest runs cases in parallel processes.
-  const auto directory = std::filesystem::temp_directory_path() / "tcpmsim_tests" /
-                         ("fit_" + std::to_string(getpid()));
-  std::filesystem::create_directories(directory);
-  return directory;
+  return process_directory("fit");
 }
 
 // A fit of `paths` (bounds: half to twice the model's value) of the base model to `data`.

@@ -6,7 +6,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <stdexcept>
+
+#include <unistd.h>
 
 namespace tcpmsim::testing {
 
@@ -130,6 +133,13 @@ double max_abs_difference(const std::vector<double>& a, const std::vector<double
 bool bitwise_equal(const std::vector<double>& a, const std::vector<double>& b) {
   return a.size() == b.size() &&
          (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+}
+
+std::string process_directory(const std::string& name) {
+  const auto directory = std::filesystem::temp_directory_path() / "tcpmsim_tests" /
+                         (name + "_" + std::to_string(getpid()));
+  std::filesystem::create_directories(directory);
+  return directory.string();
 }
 
 std::string source_path(const std::string& relative) {

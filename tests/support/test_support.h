@@ -54,5 +54,8 @@ double max_abs_difference(const std::vector<double>& a, const std::vector<double
 // The same doubles bit for bit (NaN equals NaN).
 bool bitwise_equal(const std::vector<double>& a, const std::vector<double>& b);
 std::string source_path(const std::string& relative);
+// A directory of this test process's own under the temporary directory, "<name>_<pid>" (ctest
+// runs cases in parallel processes, which must not share files), created if missing.
+std::string process_directory(const std::string& name);
 
 }  // namespace tcpmsim::testing
