@@ -6,7 +6,7 @@
 // operating range as under the PID. Same rtol (1e-5) and absolute tolerances as tcpmsim's
 // states. Prints the median wall time and CVODE's counts, for the benchmark script to set
 // against tcpmsim's own run of the same task. No assertions.
-#include <cvode/cvode.h>
+#include <cvodes/cvodes.h>
 #include <nvector/nvector_serial.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>

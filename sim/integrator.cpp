@@ -4,7 +4,7 @@
 #include "sim/time_grid.h"
 #include "sim/value_check.h"
 
-#include <cvode/cvode.h>
+#include <cvodes/cvodes.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_band.h>
