@@ -77,6 +77,7 @@ class MuscleDrive final : public Component {
   void at_breakpoint(const Evaluation& evaluation) const override;
   void sense(const Evaluation& evaluation) const override;
   SamplingStage sampling_stage() const override { return SamplingStage::actuator; }
+  bool acts_discretely() const override { return true; }
   int event_count() const override;
   int event_direction(int) const override { return -1; }
   void event_functions(const Evaluation& evaluation, double* values) const override;

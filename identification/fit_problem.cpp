@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "sim/forward_sensitivity.h"
 #include "sim/run.h"
 #include "sim/time_grid.h"
 
@@ -22,7 +23,98 @@ double value_at(const std::vector<double>& times, const std::vector<double>& val
   return values[k] + fraction * (values[k + 1] - values[k]);
 }
 
+// The chosen outputs and their sensitivities at a run's output times.
+class SensitivityPicker final : public SensitivitySink {
+ public:
+  SensitivityPicker(const System& system, const std::vector<FitOutput>& outputs,
+                    std::size_t parameters)
+      : sensitivities(outputs.size(), std::vector<std::vector<double>>(parameters)),
+        picker_(system, output_names(outputs)) {
+    for (const auto& output : outputs) indices_.push_back(system.signal_index(output.output));
+  }
+  void record(double time, std::span<const double> signals) override {
+    picker_.record(time, signals);
+  }
+  void record_sensitivities(double, const ForwardSensitivities& tracked) override {
+    for (std::size_t k = 0; k < indices_.size(); ++k) {
+      for (int j = 0; j < tracked.count(); ++j) {
+        sensitivities[k][static_cast<std::size_t>(j)].push_back(
+            tracked.output_sensitivity(j)[static_cast<std::size_t>(indices_[k])]);
+      }
+    }
+  }
+  const OutputPicker& picker() const { return picker_; }
+  std::vector<std::vector<std::vector<double>>> sensitivities;  // by output, by parameter
+
+ private:
+  static std::vector<std::string> output_names(const std::vector<FitOutput>& outputs) {
+    std::vector<std::string> names;
+    for (const auto& output : outputs) names.push_back(output.output);
+    return names;
+  }
+  OutputPicker picker_;
+  std::vector<int> indices_;
+};
+
+// A run's series (at `times`) at the measurement's samples in [first, last).
+std::vector<double> at_samples(const MeasuredData& data, std::size_t first, std::size_t last,
+                               const std::vector<double>& times,
+                               const std::vector<double>& values) {
+  std::vector<double> sampled;
+  sampled.reserve(last - first);
+  for (std::size_t i = first; i < last; ++i)
+    sampled.push_back(value_at(times, values, data.time()[i]));
+  return sampled;
+}
+
+Context context_at(const FitProblem& problem, const std::vector<double>& values) {
+  Context context = problem.model->make_context();
+  for (std::size_t j = 0; j < problem.parameters.size(); ++j)
+    context.set_parameter(problem.parameters[j].path, values[j]);
+  return context;
+}
+
 }  // namespace
+
+std::string sensitivities_unavailable(const FitProblem& problem) {
+  if (problem.model->solver.method != IntegrationMethod::bdf)
+    return "the model is integrated with the Adams method";
+  return ForwardSensitivities::unsupported_reason(*problem.model->system);
+}
+
+OutputSensitivities simulate_sensitivities(const FitProblem& problem,
+                                           const std::vector<double>& values,
+                                           const std::vector<std::size_t>& tracked,
+                                           const TimeWindow& window) {
+  Context context = context_at(problem, values);
+  const System& system = *problem.model->system;
+  std::vector<int> indices;
+  std::vector<double> scales;
+  for (std::size_t j : tracked) {
+    const auto& parameter = problem.parameters[j];
+    indices.push_back(*system.parameter_index(parameter.path));
+    // The step follows the value, or the bound range for a value at zero.
+    scales.push_back(values[j] != 0.0 ? std::abs(values[j]) : parameter.upper - parameter.lower);
+  }
+  ForwardSensitivities sensitivities(context, indices, scales);
+  SensitivityPicker picker(system, problem.outputs, tracked.size());
+  const Scenario& scenario = *problem.model;
+  Integrator integrator(system, context, scenario.solver);
+  integrator.run(0.0, scenario.settings.duration,
+                 {scenario.settings.output_interval, scenario.settings.output_start}, sensitivities,
+                 picker);
+  const auto [first, last] = samples_in(*problem.data, window);
+  const auto& times = picker.picker().times;
+  OutputSensitivities result;
+  result.sensitivities.resize(problem.outputs.size());
+  for (std::size_t k = 0; k < problem.outputs.size(); ++k) {
+    result.values.push_back(
+        at_samples(*problem.data, first, last, times, picker.picker().values[k]));
+    for (const auto& series : picker.sensitivities[k])
+      result.sensitivities[k].push_back(at_samples(*problem.data, first, last, times, series));
+  }
+  return result;
+}
 
 const ChannelInfo& named_output(const System& system, const ConfigNode& node,
                                 std::string_view owner) {
@@ -62,19 +154,15 @@ std::pair<std::size_t, std::size_t> samples_in(const MeasuredData& data, const T
 std::vector<std::vector<double>> simulate_outputs(const FitProblem& problem,
                                                   const std::vector<double>& values,
                                                   const TimeWindow& window) {
-  Context context = problem.model->make_context();
-  for (std::size_t j = 0; j < problem.parameters.size(); ++j)
-    context.set_parameter(problem.parameters[j].path, values[j]);
+  Context context = context_at(problem, values);
   std::vector<std::string> outputs;
   for (const auto& output : problem.outputs) outputs.push_back(output.output);
   OutputPicker picker(*problem.model->system, outputs);
   integrate(*problem.model, context, picker);
   const auto [first, last] = samples_in(*problem.data, window);
-  std::vector<std::vector<double>> sampled(problem.outputs.size());
-  for (std::size_t k = 0; k < problem.outputs.size(); ++k) {
-    for (std::size_t i = first; i < last; ++i)
-      sampled[k].push_back(value_at(picker.times, picker.values[k], problem.data->time()[i]));
-  }
+  std::vector<std::vector<double>> sampled;
+  for (std::size_t k = 0; k < problem.outputs.size(); ++k)
+    sampled.push_back(at_samples(*problem.data, first, last, picker.times, picker.values[k]));
   return sampled;
 }
 

@@ -68,6 +68,23 @@ class OutputPicker final : public OutputSink {
 std::vector<std::vector<double>> simulate_outputs(const FitProblem& problem,
                                                   const std::vector<double>& values,
                                                   const TimeWindow& window);
+// The model outputs at the measurement's samples inside a window and their sensitivities to
+// the fitted parameters `tracked` (indices into problem.parameters), from one run with forward
+// sensitivities (CVODES): values[k][i], and sensitivities[k][t][i] = d values[k][i] / d p_t in
+// the output's unit per SI unit of the parameter. Throws std::invalid_argument when the model
+// does not allow sensitivities (ForwardSensitivities::unsupported_reason), else as
+// simulate_outputs.
+struct OutputSensitivities {
+  std::vector<std::vector<double>> values;
+  std::vector<std::vector<std::vector<double>>> sensitivities;
+};
+OutputSensitivities simulate_sensitivities(const FitProblem& problem,
+                                           const std::vector<double>& values,
+                                           const std::vector<std::size_t>& tracked,
+                                           const TimeWindow& window);
+// Why forward sensitivities cannot serve this problem's model, or "".
+std::string sensitivities_unavailable(const FitProblem& problem);
+
 // The measured values at the same samples, one vector per output.
 std::vector<std::vector<double>> measured_outputs(const FitProblem& problem,
                                                   const TimeWindow& window);

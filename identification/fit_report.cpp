@@ -69,7 +69,8 @@ YAML::Node node_at(YAML::Node node, const std::string& path) {
 std::string fit_summary(const FitSpec& spec, const FitResult& result) {
   std::ostringstream out;
   out << "fit of " << spec.model_file << " to " << spec.data_file << ": " << result.iterations
-      << " iterations, " << result.simulations << " simulations; " << result.termination << "\n";
+      << " iterations, " << result.simulations << " simulations; " << result.termination << "\n"
+      << "  gradient: " << result.gradient << "\n";
   out << "  " << std::left << std::setw(36) << "parameter" << std::setw(16) << "initial"
       << std::setw(16) << "estimate" << std::setw(14) << "std. error"
       << "unit\n";
@@ -116,6 +117,7 @@ std::string fit_json(const FitSpec& spec, const FitResult& result) {
   json["iterations"] = result.iterations;
   json["simulations"] = result.simulations;
   json["termination"] = result.termination;
+  json["gradient"] = result.gradient;
   return json.dump(2) + "\n";
 }
 

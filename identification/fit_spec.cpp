@@ -129,6 +129,20 @@ void read_multistart(const ConfigNode& root, FitSettings& settings) {
       static_cast<std::uint64_t>(multistart->integer_or("seed", 1, ValueCheck::non_negative()));
 }
 
+// `gradient: automatic | sensitivities | differences`; sensitivities only where the model
+// allows them.
+Gradient read_gradient(const ConfigNode& root, const FitProblem& problem) {
+  const std::string gradient =
+      root.choice_or("gradient", {"automatic", "sensitivities", "differences"}, "automatic");
+  if (gradient == "differences") return Gradient::differences;
+  if (gradient == "automatic") return Gradient::automatic;
+  if (const std::string unavailable = sensitivities_unavailable(problem); !unavailable.empty())
+    root.at("gradient")
+        .fail("forward sensitivities are not available for this model: " + unavailable +
+              " (use automatic or differences)");
+  return Gradient::sensitivities;
+}
+
 }  // namespace
 
 FitSpec load_fit(const std::string& file, const std::vector<std::string>& overrides,
@@ -136,7 +150,7 @@ FitSpec load_fit(const std::string& file, const std::vector<std::string>& overri
                  std::shared_ptr<const UnitSystem> units) {
   const ConfigNode root = ConfigNode::load_file(file, overrides, units);
   root.declare({"model", "set", "data", "outputs", "parameters", "identification", "validation",
-                "multistart"});
+                "multistart", "gradient"});
   FitSpec spec;
   spec.file = file;
   spec.model_file = file_named_by(root.at("model"));
@@ -180,6 +194,7 @@ FitSpec load_fit(const std::string& file, const std::vector<std::string>& overri
   spec.problem.parameters = read_parameters(root, *model);
   spec.settings.threads = threads;
   read_multistart(root, spec.settings);
+  spec.settings.gradient = read_gradient(root, spec.problem);
   root.reject_unknown_keys();
   return spec;
 }

@@ -63,6 +63,41 @@ class Residuals {
     if (!evaluate(values, residuals.data())) return std::numeric_limits<double>::infinity();
     return 0.5 * std::inner_product(residuals.begin(), residuals.end(), residuals.begin(), 0.0);
   }
+  // The weighted residuals' Jacobian (row-major, m x n) per SI unit of each parameter, from
+  // forward sensitivities; the parameters are shared among `threads` runs.
+  bool sensitivity_jacobian(const std::vector<double>& values, int threads,
+                            std::vector<double>& jacobian) const {
+    const std::size_t n = values.size();
+    const auto runs = std::min<std::size_t>(n, static_cast<std::size_t>(std::max(1, threads)));
+    std::vector<std::vector<std::size_t>> tracked(runs);
+    for (std::size_t j = 0; j < n; ++j) tracked[j % runs].push_back(j);
+    std::vector<OutputSensitivities> results(runs);
+    std::vector<char> ran(runs, 0);
+    const std::vector<std::string> labels(runs, "sensitivities");
+    run_in_parallel(labels, threads, [&](std::size_t r) {
+      ++simulations_;
+      try {
+        results[r] = simulate_sensitivities(problem_, values, tracked[r], problem_.identification);
+        ran[r] = 1;
+      } catch (const std::exception& error) {
+        const std::lock_guard lock(mutex_);
+        if (first_failure_.empty()) first_failure_ = error.what();
+      }
+    });
+    if (std::find(ran.begin(), ran.end(), 0) != ran.end()) return false;
+    jacobian.assign(count_ * n, 0.0);
+    for (std::size_t r = 0; r < runs; ++r) {
+      for (std::size_t t = 0; t < tracked[r].size(); ++t) {
+        std::size_t at = 0;
+        for (std::size_t k = 0; k < measured_.size(); ++k) {
+          const auto& column = results[r].sensitivities[k][t];
+          for (double value : column)
+            jacobian[(at++) * n + tracked[r][t]] = value / problem_.outputs[k].noise;
+        }
+      }
+    }
+    return std::all_of(jacobian.begin(), jacobian.end(), [](double v) { return std::isfinite(v); });
+  }
   int simulations() const { return simulations_; }
   std::string first_failure() const {
     const std::lock_guard lock(mutex_);
@@ -82,8 +117,12 @@ class Residuals {
 // coordinates, its columns simulated in parallel.
 class SimulationCost final : public ceres::CostFunction {
  public:
-  SimulationCost(const FitProblem& problem, const Residuals& residuals, const FitSettings& settings)
-      : problem_(problem), residuals_(residuals), settings_(settings) {
+  SimulationCost(const FitProblem& problem, const Residuals& residuals, const FitSettings& settings,
+                 bool sensitivities)
+      : problem_(problem),
+        residuals_(residuals),
+        settings_(settings),
+        sensitivities_(sensitivities) {
     set_num_residuals(static_cast<int>(residuals.count()));
     mutable_parameter_block_sizes()->push_back(static_cast<int>(problem.parameters.size()));
   }
@@ -106,12 +145,26 @@ class SimulationCost final : public ceres::CostFunction {
     }
     std::copy(last_residuals_.begin(), last_residuals_.end(), residuals);
     if (!want_jacobian) return true;
-    if (last_jacobian_.empty() && !difference(theta)) return false;
+    if (last_jacobian_.empty() && !(sensitivities_ ? sensitivity(theta) : difference(theta)))
+      return false;
     std::copy(last_jacobian_.begin(), last_jacobian_.end(), jacobians[0]);
     return true;
   }
 
  private:
+  // The Jacobian at the last point from forward sensitivities, in the unit coordinates.
+  bool sensitivity(const std::vector<double>& theta) const {
+    if (!residuals_.sensitivity_jacobian(physical(problem_, theta.data()), settings_.threads,
+                                         last_jacobian_))
+      return false;
+    const std::size_t n = theta.size();
+    for (std::size_t i = 0; i < last_jacobian_.size(); ++i) {
+      const auto& parameter = problem_.parameters[i % n];
+      last_jacobian_[i] *= parameter.upper - parameter.lower;
+    }
+    return true;
+  }
+
   // The forward-difference Jacobian at the last point (row-major), its columns in parallel.
   bool difference(const std::vector<double>& theta) const {
     const std::size_t n = theta.size();
@@ -140,6 +193,7 @@ class SimulationCost final : public ceres::CostFunction {
   const FitProblem& problem_;
   const Residuals& residuals_;
   const FitSettings& settings_;
+  bool sensitivities_;
   mutable std::vector<double> last_theta_;
   mutable std::vector<double> last_residuals_;
   mutable std::vector<double> last_jacobian_;
@@ -153,10 +207,10 @@ struct Refined {
 };
 
 Refined refine(const FitProblem& problem, const Residuals& residuals, const FitSettings& settings,
-               std::vector<double> theta) {
+               bool sensitivities, std::vector<double> theta) {
   ceres::Problem ceres_problem;
-  ceres_problem.AddResidualBlock(new SimulationCost(problem, residuals, settings), nullptr,
-                                 theta.data());
+  ceres_problem.AddResidualBlock(new SimulationCost(problem, residuals, settings, sensitivities),
+                                 nullptr, theta.data());
   for (std::size_t j = 0; j < theta.size(); ++j) {
     ceres_problem.SetParameterLowerBound(theta.data(), static_cast<int>(j), 0.0);
     ceres_problem.SetParameterUpperBound(theta.data(), static_cast<int>(j), 1.0);
@@ -293,6 +347,16 @@ void add_statistics(FitResult& result, const Eigen::MatrixXd& jacobian) {
   }
 }
 
+// Whether the fit uses forward sensitivities, and what the report says of its gradient.
+std::pair<bool, std::string> choose_gradient(const FitProblem& problem, Gradient gradient) {
+  const std::string unavailable = sensitivities_unavailable(problem);
+  if (gradient == Gradient::differences) return {false, "finite differences (as asked)"};
+  if (unavailable.empty()) return {true, "forward sensitivities (CVODES)"};
+  if (gradient == Gradient::sensitivities)
+    throw std::invalid_argument("forward sensitivities are not available: " + unavailable);
+  return {false, "finite differences (no forward sensitivities: " + unavailable + ")"};
+}
+
 }  // namespace
 
 WindowScore score_window(const FitProblem& problem, const std::vector<double>& values,
@@ -301,6 +365,7 @@ WindowScore score_window(const FitProblem& problem, const std::vector<double>& v
 }
 
 FitResult fit_model(const FitProblem& problem, const FitSettings& settings) {
+  const auto [sensitivities, gradient] = choose_gradient(problem, settings.gradient);
   const Residuals residuals(problem);
   const auto points = starting_points(problem, settings);
   std::vector<double> costs(points.size());
@@ -319,7 +384,7 @@ FitResult fit_model(const FitProblem& problem, const FitSettings& settings) {
       std::min<std::size_t>(points.size(), static_cast<std::size_t>(std::max(1, settings.refine)));
   for (std::size_t r = 0; r < refinements; ++r) {
     if (!std::isfinite(costs[order[r]])) break;
-    Refined candidate = refine(problem, residuals, settings, points[order[r]]);
+    Refined candidate = refine(problem, residuals, settings, sensitivities, points[order[r]]);
     iterations += candidate.iterations;
     if (candidate.cost < best.cost) best = std::move(candidate);
   }
@@ -332,6 +397,7 @@ FitResult fit_model(const FitProblem& problem, const FitSettings& settings) {
   result.cost = best.cost;
   result.iterations = iterations;
   result.termination = best.termination;
+  result.gradient = gradient;
   const std::vector<double> values = physical(problem, best.theta.data());
   const Context context = problem.model->make_context();
   for (std::size_t j = 0; j < problem.parameters.size(); ++j) {
@@ -340,7 +406,7 @@ FitResult fit_model(const FitProblem& problem, const FitSettings& settings) {
         {parameter.path, parameter.unit, context.parameter(parameter.path), values[j], kNaN, true});
   }
   // The Jacobian at the estimate, per SI unit of each parameter.
-  const SimulationCost cost(problem, residuals, settings);
+  const SimulationCost cost(problem, residuals, settings, sensitivities);
   const std::size_t m = residuals.count(), n = values.size();
   std::vector<double> r(m), jacobian_values(m * n);
   double* jacobian_pointer = jacobian_values.data();

@@ -11,6 +11,10 @@
 
 namespace tcpmsim::fit {
 
+// How the fit differentiates the residuals: forward sensitivities (CVODES) where the model
+// allows them, else forward differences of whole simulations (automatic); or one of the two.
+enum class Gradient { automatic, sensitivities, differences };
+
 struct FitSettings {
   // Multistart: `starts` Latin-hypercube points over the bounds (seeded) are screened by one
   // simulation each, besides the model's own values; Levenberg-Marquardt refines the `refine`
@@ -21,6 +25,7 @@ struct FitSettings {
   int threads = 2;                // simulations at once (finite differences, screening)
   double difference_step = 1e-4;  // of each parameter's bound range, for forward differences
   int max_iterations = 50;
+  Gradient gradient = Gradient::automatic;
 };
 
 // One parameter's estimate. standard_error is NaN when the data do not identify it.
@@ -54,6 +59,9 @@ struct FitResult {
   int iterations = 0;
   int simulations = 0;
   std::string termination;
+  // How the Jacobian was computed: "forward sensitivities (CVODES)", or "finite differences"
+  // with the reason sensitivities were not used.
+  std::string gradient;
   WindowScore identification;
   WindowScore validation;
 };

@@ -170,6 +170,11 @@ class Component {
   enum class SamplingStage { instrument = 0, estimator = 1, controller = 2, actuator = 3 };
   virtual SamplingStage sampling_stage() const { return SamplingStage::instrument; }
 
+  // Whether the component changes its run state at breakpoints or events (a sampled
+  // controller's held command, a drive's switching edges): a jump that forward sensitivities,
+  // which follow the continuous state only, cannot pass through.
+  virtual bool acts_discretely() const { return false; }
+
   // Zero-crossing events: g_k(t, y) whose sign changes CVODE locates to within rounding. A
   // component with events writes its g values and reacts to a located crossing; the state is
   // continuous across it (a discontinuity must be a breakpoint).

@@ -1,5 +1,6 @@
 #include "sim/integrator.h"
 
+#include "sim/forward_sensitivity.h"
 #include "sim/serial_vector_kernels.h"
 #include "sim/time_grid.h"
 #include "sim/value_check.h"
@@ -75,9 +76,17 @@ struct detail::CvodeHandles {
   std::vector<double> configured_tolerances;
   std::vector<double> adapted_tolerances;
   std::vector<double> relative_tolerances;  // per state; the configured rtol unless adapted
+  // Forward sensitivities, when a run tracks them: s_j (CVODES' state) and s_j at an output time.
+  ForwardSensitivities* sensitivities = nullptr;
+  N_Vector* sensitivity_state = nullptr;
+  N_Vector* sensitivity_output = nullptr;
+  std::vector<double*> sensitivity_pointers;
 
   ~CvodeHandles() {
     if (memory) CVodeFree(&memory);
+    const int count = sensitivities ? sensitivities->count() : 0;
+    if (sensitivity_output) N_VDestroyVectorArray(sensitivity_output, count);
+    if (sensitivity_state) N_VDestroyVectorArray(sensitivity_state, count);
     if (nonlinear_solver) SUNNonlinSolFree(nonlinear_solver);
     if (linear_solver) SUNLinSolFree(linear_solver);
     if (matrix) SUNMatDestroy(matrix);
@@ -136,6 +145,24 @@ int right_hand_side(realtype t, N_Vector y, N_Vector ydot, void* user_data) {
       const auto& info = cv.system->states()[static_cast<std::size_t>(i)];
       cv.rhs_problem = "the derivative of " + info.name + " (component " + info.owner->group() +
                        "/" + info.owner->kind() + ") is not finite at t = " + number_text(t) + " s";
+      return kRecoverable;
+    }
+  }
+  return 0;
+}
+
+// s_j' for every tracked parameter j (ForwardSensitivities::derivatives).
+int sensitivity_right_hand_side(int count, realtype t, N_Vector y, N_Vector, N_Vector* sensitivity,
+                                N_Vector* derivative, void* user_data, N_Vector, N_Vector) {
+  auto& cv = cvode_of(user_data);
+  const double* state = N_VGetArrayPointer(y);
+  const auto size = static_cast<std::size_t>(cv.system->state_size());
+  for (int j = 0; j < count; ++j) {
+    double* result = N_VGetArrayPointer(derivative[j]);
+    cv.sensitivities->derivatives(j, t, cv.signal_time(t), state,
+                                  N_VGetArrayPointer(sensitivity[j]), result);
+    if (!std::all_of(result, result + size, [](double value) { return std::isfinite(value); })) {
+      cv.rhs_problem = "a sensitivity's derivative is not finite at t = " + number_text(t) + " s";
       return kRecoverable;
     }
   }
@@ -611,12 +638,54 @@ void Integrator::start_segment(double start, bool first) {
   refresh_tolerances();
 }
 
+void Integrator::start_sensitivities(bool first) {
+  auto& cv = *cvode_;
+  if (!first) {
+    check(CVodeSensReInit(cv.memory, CV_STAGGERED, cv.sensitivity_state), "CVodeSensReInit");
+    return;
+  }
+  check(CVodeSensInit(cv.memory, cv.sensitivities->count(), CV_STAGGERED,
+                      sensitivity_right_hand_side, cv.sensitivity_state),
+        "CVodeSensInit");
+  // The scales weigh the sensitivities' errors as the state's (CVODES' p-bar).
+  std::vector<double> scales = cv.sensitivities->scales();
+  check(CVodeSetSensParams(cv.memory, nullptr, scales.data(), nullptr), "CVodeSetSensParams");
+  check(CVodeSensEEtolerances(cv.memory), "CVodeSensEEtolerances");
+  check(CVodeSetSensErrCon(cv.memory, SUNTRUE), "CVodeSetSensErrCon");
+}
+
+void Integrator::record_sensitivities(double when, const double* state) {
+  auto& cv = *cvode_;
+  check(CVodeGetSensDky(cv.memory, when, 0, cv.sensitivity_output), "CVodeGetSensDky");
+  for (int j = 0; j < cv.sensitivities->count(); ++j) {
+    cv.sensitivities->outputs(j, when, cv.signal_time(when), state,
+                              N_VGetArrayPointer(cv.sensitivity_output[j]));
+  }
+  sensitivity_sink_->record_sensitivities(when, *cv.sensitivities);
+}
+
+SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output,
+                                 ForwardSensitivities& sensitivities, SensitivitySink& sink) {
+  if (settings_.method == IntegrationMethod::adams)
+    throw std::invalid_argument("forward sensitivities need the BDF method");
+  auto& cv = *cvode_;
+  if (cv.sensitivities) throw std::logic_error("an integrator tracks sensitivities once");
+  cv.sensitivities = &sensitivities;
+  cv.sensitivity_state = N_VCloneVectorArray(sensitivities.count(), cv.state);
+  cv.sensitivity_output = N_VCloneVectorArray(sensitivities.count(), cv.state);
+  for (int j = 0; j < sensitivities.count(); ++j)
+    cv.sensitivity_pointers.push_back(N_VGetArrayPointer(cv.sensitivity_state[j]));
+  sensitivity_sink_ = &sink;
+  return run(t0, t_end, output, sink);
+}
+
 SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output, OutputSink& sink,
                                  const Progress& progress) {
   auto& cv = *cvode_;
   double* state = N_VGetArrayPointer(cv.state);
   system_.initialize(context_, t0, state);
   system_.at_breakpoint(context_, t0, t0, state);  // sampled components take their first sample
+  if (cv.sensitivities) cv.sensitivities->initialize(t0, cv.sensitivity_pointers);
   statistics_ = {};
   OutputGrid grid(std::max(t0, output.start), t_end, output.interval);
   long steps_taken = 0;
@@ -630,9 +699,11 @@ SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output, Ou
     double stop = system_.next_breakpoint_after(context_, t);
     while (stop <= t + 2.0 * margin)
       stop = system_.next_breakpoint_after(context_, std::max(stop, t + 2.0 * margin));
+    if (cv.sensitivities) cv.sensitivities->check_breakpoint(t, stop);
     stop = std::min(stop, t_end);
     const bool last_segment = stop >= t_end;
     start_segment(t, t == t0);
+    if (cv.sensitivities) start_sensitivities(t == t0);
     check(CVodeSetStopTime(cv.memory, stop), "CVodeSetStopTime");
     cv.segment_start = t + margin;
     cv.segment_end = stop - time_margin(stop);
@@ -678,12 +749,19 @@ SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output, Ou
         system_.evaluate_outputs(context_, when, cv.signal_time(when),
                                  N_VGetArrayPointer(cv.scratch));
         sink.record(when, context_.signals());
+        if (cv.sensitivities) record_sensitivities(when, N_VGetArrayPointer(cv.scratch));
         ++statistics_.output_samples;
       }
       if (progress) progress(reached, steps_taken);
     }
     t = stop;
-    if (t < t_end) system_.at_breakpoint(context_, t, t - time_margin(t), state);
+    if (t < t_end) {
+      system_.at_breakpoint(context_, t, t - time_margin(t), state);
+      if (cv.sensitivities) {
+        check(CVodeGetSens(cv.memory, &reached, cv.sensitivity_state), "CVodeGetSens");
+        cv.sensitivities->at_breakpoint(t, t - time_margin(t), state, cv.sensitivity_pointers);
+      }
+    }
   }
   accumulate_statistics();
   return statistics_;

@@ -72,6 +72,15 @@ class OutputSink {
   virtual void record(double time, std::span<const double> signals) = 0;
 };
 
+class ForwardSensitivities;
+
+// Receives the outputs and, right after them, their sensitivities to the tracked parameters
+// (ForwardSensitivities::output_sensitivity) at each output time.
+class SensitivitySink : public OutputSink {
+ public:
+  virtual void record_sensitivities(double time, const ForwardSensitivities& sensitivities) = 0;
+};
+
 class SolverFailure : public std::runtime_error {
  public:
   SolverFailure(const std::string& message, double time, SolverStatistics statistics)
@@ -101,10 +110,17 @@ class Integrator {
   // Throws SolverFailure with the CVODE flag, the time and the worst state entries.
   SolverStatistics run(double t0, double t_end, OutputTimes output, OutputSink& sink,
                        const Progress& progress = {});
+  // The same, integrating forward sensitivities beside the state (CVODES, staggered, with the
+  // sensitivities under error control) and handing `sink` the outputs' sensitivities too.
+  // Throws std::invalid_argument with the Adams method (sensitivities need Newton's iteration).
+  SolverStatistics run(double t0, double t_end, OutputTimes output,
+                       ForwardSensitivities& sensitivities, SensitivitySink& sink);
 
  private:
   void attach_linear_solver();
   void start_segment(double start, bool first);
+  void start_sensitivities(bool first);
+  void record_sensitivities(double when, const double* state);
   void refresh_tolerances();
   void accumulate_statistics();
   SolverFailure failure(const std::string& headline);
@@ -114,6 +130,7 @@ class Integrator {
   Context& context_;
   SolverSettings settings_;
   SolverStatistics statistics_;
+  SensitivitySink* sensitivity_sink_ = nullptr;
 };
 
 }  // namespace tcpmsim

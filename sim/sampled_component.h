@@ -17,6 +17,7 @@ class SampledComponent : public Component {
   double next_breakpoint_after(const Evaluation& evaluation) const override;
   void at_breakpoint(const Evaluation& evaluation) const final;
   SamplingStage sampling_stage() const override { return stage_; }
+  bool acts_discretely() const final { return true; }
   double period() const { return period_; }  // as built
 
  protected:

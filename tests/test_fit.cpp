@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numeric>
 
 #include "identification/bench_measurement.h"
 #include "identification/fit_report.h"
@@ -123,10 +124,48 @@ TEST_CASE("The six force-model parameters of Table 7.2 are recovered from the ch
     CHECK(std::abs(estimate.value - truth[j].value) <= 3.0 * estimate.standard_error);
     CHECK(estimate.standard_error < 0.05 * truth[j].value);
   }
+  CHECK(result.gradient == "forward sensitivities (CVODES)");
   WARN("fit: " << result.iterations << " iterations, " << result.simulations << " simulations; "
                << "validation RMSE " << result.validation.rmse[0] * 1e3 << " mN, R2 "
                << result.validation.r2[0]);
   CHECK(result.identification.rmse[0] == Approx(noise).epsilon(0.1));
+}
+
+TEST_CASE(
+    "The outputs' sensitivities from CVODES agree with central differences of whole simulations") {
+  const std::string data = protocol_measurement(1e-3, 3);
+  const std::vector<std::string> paths = {
+      "muscle.thermal_force.kappa_P",  "muscle.thermal_force.kappa_c",
+      "muscle.mechanics.force_offset", "muscle.mechanics.k1",
+      "muscle.mechanics.k2",           "muscle.mechanics.damping"};
+  // Tight tolerances, so that the differences of whole runs are accurate enough to judge by.
+  const fit::FitProblem problem = base_problem(data, paths, {"solver.rtol=1e-10"});
+  REQUIRE(fit::sensitivities_unavailable(problem).empty());
+  const Context context = problem.model->make_context();
+  std::vector<double> values;
+  for (const auto& path : paths) values.push_back(context.parameter(path));
+  std::vector<std::size_t> tracked(paths.size());
+  std::iota(tracked.begin(), tracked.end(), 0);
+  const auto sensitivities =
+      fit::simulate_sensitivities(problem, values, tracked, problem.identification);
+  for (std::size_t j = 0; j < paths.size(); ++j) {
+    // Central differences err by O(step^2) and by the runs' own errors over 2 step.
+    const double step = 1e-3 * values[j];
+    std::vector<double> up = values, down = values;
+    up[j] += step;
+    down[j] -= step;
+    const auto high = fit::simulate_outputs(problem, up, problem.identification)[0];
+    const auto low = fit::simulate_outputs(problem, down, problem.identification)[0];
+    double largest = 0.0, worst = 0.0;
+    for (std::size_t i = 0; i < high.size(); ++i) {
+      const double difference = (high[i] - low[i]) / (2.0 * step);
+      largest = std::max(largest, std::abs(difference));
+      worst = std::max(worst, std::abs(sensitivities.sensitivities[0][j][i] - difference));
+    }
+    INFO(paths[j] << ": largest dF/dp " << largest << ", worst disagreement " << worst);
+    CHECK(largest > 0.0);
+    CHECK(worst <= 1e-5 * largest);
+  }
 }
 
 TEST_CASE("Parameters the data cannot identify are named, never returned as numbers") {
