@@ -22,10 +22,12 @@ ThermalForm build_reduced(const ConfigNode& muscle, const std::string& name,
   auto& reduced =
       build.system().add(ReducedThermalForce::from_config(name, muscle.at("thermal_force")));
   build.system().export_input(name + ".power", reduced, "power");
+  build.system().export_input(name + ".heat_loss", reduced, "heat_loss");
   const std::string initial = name + ".thermal_force.initial_thermal_force";
+  const bool temperature = reduced.defaults().force_per_kelvin.has_value();
   return {reduced.defaults().initial_thermal_force,
-          [initial](const Context& context) { return context.parameter(initial); },
-          reduced.defaults().force_per_kelvin.has_value(), false};
+          [initial](const Context& context) { return context.parameter(initial); }, temperature,
+          false, temperature};
 }
 
 ThermalForm build_physical(const ConfigNode& muscle, const std::string& name,
@@ -51,7 +53,7 @@ ThermalForm build_physical(const ConfigNode& muscle, const std::string& name,
         context.parameter(name + ".thermal_force.force_per_kelvin"), start,
         context.parameter(name + ".thermal_force.reference_temperature"));
   };
-  return {initial, in_run, true, true};
+  return {initial, in_run, true, true, true};
 }
 
 void build_effects(const ConfigNode& muscle, const std::string& name, MuscleFacts& facts,

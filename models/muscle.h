@@ -32,6 +32,10 @@ struct ThermalForm {
   std::function<double(const Context&)> initial_thermal_force_in;
   bool reports_temperature = false;  // <muscle>.temperature exists
   bool heat_balance = false;         // a thermal node whose heat balance takes attached terms
+  // Attached heat terms (a heat loss beside the linear one) are taken: by the thermal node's
+  // balance, or by (7.1) as power lost before it heats, kappa_P (P - Q), when the reduced form
+  // reports a temperature for them to depend on.
+  bool takes_heat_terms = false;
 };
 
 // A muscle at rest at the start: every dashpot relaxed (x_d = x) and F_T at its initial value.

@@ -57,7 +57,10 @@ std::unique_ptr<ReducedThermalForce> ReducedThermalForce::from_config(const std:
 }
 
 std::vector<OutputDeclaration> ReducedThermalForce::outputs() const {
-  if (defaults().force_per_kelvin) return {{"thermal_force", "N"}, {"temperature", "K"}};
+  // The ambient temperature is a port for attached heat terms, not recorded (the parameter is).
+  if (defaults().force_per_kelvin)
+    return {
+        {"thermal_force", "N"}, {"temperature", "K"}, {"ambient_temperature", "K", false, false}};
   return {{"thermal_force", "N"}};
 }
 
@@ -74,6 +77,7 @@ void ReducedThermalForce::compute_outputs(const Evaluation& evaluation) const {
     set_output(
         evaluation, kTemperature,
         thermal_force::temperature(p.ambient_temperature, thermal_force, *p.force_per_kelvin));
+    set_output(evaluation, kAmbientTemperature, p.ambient_temperature);
   }
 }
 
@@ -82,7 +86,8 @@ void ReducedThermalForce::compute_derivatives(const Evaluation& evaluation,
   const auto& p = run_parameters(evaluation);
   set_derivative(derivatives, 0,
                  thermal_force::rate(p.heating_gain, p.cooling_rate, state(evaluation, 0),
-                                     input(evaluation, kPower)));  // (7.1)
+                                     input(evaluation, kPower) - input_sum(evaluation, kHeatLoss)));
+  // (7.1)
 }
 
 }  // namespace tcpmsim

@@ -34,8 +34,8 @@ class PhysicalThermalForce final : public ParametricComponent<PhysicalThermalFor
 // (7.1): dF_T/dt = kappa_P P - kappa_c F_T, with F_T as the state.
 class ReducedThermalForce final : public ParametricComponent<ReducedThermalForceParameters> {
  public:
-  enum Input { kPower };
-  enum Output { kThermalForce, kTemperature };
+  enum Input { kPower, kHeatLoss };
+  enum Output { kThermalForce, kTemperature, kAmbientTemperature };
   ReducedThermalForce(std::string group, ReducedThermalForceParameters defaults,
                       ParameterBindings<ReducedThermalForceParameters> bindings = {});
   static std::unique_ptr<ReducedThermalForce> from_config(const std::string& group,
@@ -43,7 +43,11 @@ class ReducedThermalForce final : public ParametricComponent<ReducedThermalForce
 
   std::vector<StateDeclaration> states() const override { return {{"thermal_force", "N", 1e-10}}; }
   std::vector<OutputDeclaration> outputs() const override;
-  std::vector<InputDeclaration> inputs() const override { return {{"power", false}}; }
+  // Attached heat terms Q (a fan-in, none by default) take their share of the power before it
+  // heats: dF_T/dt = kappa_P (P - sum Q) - kappa_c F_T.
+  std::vector<InputDeclaration> inputs() const override {
+    return {{"power", false}, {"heat_loss", false, false, InputArity::many}};
+  }
   void initialize(const Evaluation& evaluation, std::span<double> own_state) const override;
   void compute_outputs(const Evaluation& evaluation) const override;
   void compute_derivatives(const Evaluation& evaluation, double* derivatives) const override;

@@ -36,6 +36,11 @@ void SystemBuilder::export_input(std::string_view port, const Component& consume
     throw std::logic_error("two inputs are exported as the port '" + std::string(port) + "'");
 }
 
+void SystemBuilder::share_input(std::string_view port, const Component& consumer,
+                                std::string_view input_name) {
+  shared_ports_.emplace(std::string(port), Export{&consumer, std::string(input_name)});
+}
+
 void SystemBuilder::connect(std::string_view port, std::string_view source_output) {
   port_connections_.emplace_back(std::string(port), std::string(source_output));
 }
@@ -167,6 +172,9 @@ void System::wire(const SystemBuilder& builder) {
     if (exported == builder.ports_.end())
       throw std::logic_error("no input port '" + port + "' (to connect to '" + source + "')");
     attach(*exported->second.consumer, exported->second.input, source);
+    const auto [first, last] = builder.shared_ports_.equal_range(port);
+    for (auto sharer = first; sharer != last; ++sharer)
+      attach(*sharer->second.consumer, sharer->second.input, source);
   }
   for (std::size_t c = 0; c < components_.size(); ++c) {
     Component& component = *components_[c];

@@ -224,6 +224,10 @@ class SystemBuilder {
   // Names a component's input as a port of its instance ("left.power"), so that whoever
   // drives the instance need not know its parts.
   void export_input(std::string_view port, const Component& consumer, std::string_view input_name);
+  // Makes `consumer`'s input read whatever is connected to an exported port as well (an effect
+  // attached to a muscle reading the muscle's power). Exported or not, the port must be
+  // connected before the System is built.
+  void share_input(std::string_view port, const Component& consumer, std::string_view input_name);
   // Connects an exported port to the output "group.name".
   void connect(std::string_view port, std::string_view source_output);
   // Whether anything has been connected to an exported port.
@@ -257,6 +261,7 @@ class SystemBuilder {
   std::vector<std::unique_ptr<Component>> components_;
   std::vector<Connection> connections_;
   std::unordered_map<std::string, Export> ports_;
+  std::unordered_multimap<std::string, Export> shared_ports_;
   std::vector<std::pair<std::string, std::string>> port_connections_;
   struct PendingDerivation {
     std::string path;

@@ -203,17 +203,51 @@ load: {type: deflection, deflection: 20 mm}
   }
 }
 
+TEST_CASE(
+    "A heat term attached to the reduced form (7.1) heats as in the physical form it maps from") {
+  // kappa_P = phi_T / C and kappa_c = hA / C: the reduced form with the convection taking its
+  // share of the power, kappa_P (P - Q), is the physical heat balance divided by C / phi_T.
+  const std::string rest = R"(
+  mechanics: {k1: 10.8 N/m, k2: 2.7 N/m, damping: 4.3 N*s/m, force_offset: 0.1 N}
+  resistance: 10 ohm
+  inductance: {quantity: measure, lambda_l: 2.81 mm, lambda_x: 28.8 mm, lambda_0: 0.433}
+  effects: [{type: free_convection, name: still_air, conductance: 0.01 W/K, reference_difference: 50 K}]
+drive: {mode: power, power: {type: steps, initial: 1.5 W, times: [100 s], values: [0.5 W]}}
+load: {type: deflection, deflection: 20 mm}
+)";
+  const std::string header = R"(scenario: {name: test, duration: 300 s}
+output: {rate: 1 Hz}
+solver: {rtol: 1.0e-10}
+muscle:)";
+  const Trace physical = simulate(header + R"(
+  thermal: {heat_capacity: 0.3 J/K, conductance: 0.01 W/K, ambient_temperature: 23 degC}
+  thermal_force: {form: physical, force_per_kelvin: 0.004 N/K, reference_temperature: 23 degC})" +
+                                  rest);
+  const Trace reduced = simulate(header + R"(
+  thermal_force: {form: reduced, kappa_P: 0.013333333333333334 N/J, kappa_c: 0.033333333333333333 1/s, ambient_temperature: 23 degC, force_per_kelvin: 0.004 N/K})" +
+                                 rest);
+  CHECK(physical["muscle/temperature"].back() > 296.15 + 20.0);
+  // Tens of CVODE's error weight on the node's temperature, rtol |T| + atol (1e-6 K); the heat
+  // loss moves by dQ/dT < 0.02 W/K with it.
+  const double temperature_bound = 50.0 * (1e-10 * 330.0 + 1e-6);
+  CHECK(max_abs_difference(physical["muscle/temperature"], reduced["muscle/temperature"]) <=
+        temperature_bound);
+  CHECK(max_abs_difference(physical["muscle/still_air/heat_loss"],
+                           reduced["muscle/still_air/heat_loss"]) <= 0.02 * temperature_bound);
+}
+
 TEST_CASE("Effects are checked against the muscle they attach to") {
   const std::string load = "load: {type: deflection, deflection: 20 mm}\n";
   CHECK_THAT(
       config_error(passive_muscle("  effects: [{type: free_convection, conductance: 0.01 W/K, "
                                   "reference_difference: 50 K}]\n",
                                   load)),
-      Catch::Contains("free convection needs a heat balance to attach to"));
+      Catch::Contains("free convection needs the muscle's temperature"));
   CHECK_THAT(
       config_error(passive_muscle("  effects: [{type: maxwell_brunch}]\n", load)),
       Catch::Contains("muscle.effects[0].type: expected one of maxwell_branch, free_convection, "
-                      "thermal_softening, got 'maxwell_brunch' (did you mean "
+                      "thermal_softening, hysteresis, nonlinear_stiffness, thermal_lag, got "
+                      "'maxwell_brunch' (did you mean "
                       "'maxwell_branch'?)"));
   CHECK_THAT(config_error(passive_muscle(
                  "  effects: [{type: maxwell_branch, stiffness: 1 N/m, damping: 1 N*s/m}, "

@@ -167,7 +167,10 @@ load: {type: force, force: 0.4 N}
   Context context = scenario.make_context();
   CHECK(context.parameter("muscle.effects[0].stiffness") == 4.0);
   // The standard registry does not know it.
-  CHECK_THROWS_WITH(scenario_from_text(yaml),
-                    Catch::Contains("muscle.effects[0].type: expected one of maxwell_branch, "
-                                    "free_convection, thermal_softening, got 'parallel_spring'"));
+  CHECK_THROWS_WITH(
+      scenario_from_text(yaml),
+      Catch::Contains(
+          "muscle.effects[0].type: expected one of maxwell_branch, "
+          "free_convection, thermal_softening, hysteresis, nonlinear_stiffness, thermal_lag, "
+          "got 'parallel_spring'"));
 }

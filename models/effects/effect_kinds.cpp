@@ -1,7 +1,10 @@
 #include "models/effects/effect_kinds.h"
 
 #include "models/effects/free_convection.h"
+#include "models/effects/hysteresis.h"
 #include "models/effects/maxwell_branch.h"
+#include "models/effects/nonlinear_stiffness.h"
+#include "models/effects/thermal_lag.h"
 #include "models/effects/thermal_softening.h"
 #include "models/muscle.h"
 
@@ -18,22 +21,35 @@ void connect_force_term(SystemBuilder& system, const MuscleAttachment& muscle) {
   system.connect(muscle.muscle + ".attached_rest_force", muscle.group + ".rest_force");
 }
 
+// A force term with a state that follows the muscle's deflection from its rest deflection.
+void connect_deflection_term(SystemBuilder& system, const Component& term,
+                             const MuscleAttachment& muscle) {
+  system.connect(term, "deflection", muscle.muscle + ".deflection");
+  system.connect(term, "rest_deflection", muscle.muscle + ".rest_deflection");
+  connect_force_term(system, muscle);
+}
+
+// A heat term depends on the muscle's temperature, which the reduced form reports only with
+// its force_per_kelvin.
+void require_heat_terms(const ConfigNode& section, const MuscleAttachment& muscle,
+                        const std::string& what) {
+  if (!muscle.facts->thermal.takes_heat_terms) {
+    section.fail(what +
+                 " needs the muscle's temperature: use the physical thermal form, or give the "
+                 "reduced form's thermal_force.force_per_kelvin");
+  }
+}
+
 void attach_maxwell_branch(const ConfigNode& section, const MuscleAttachment& muscle,
                            ScenarioBuilder& build) {
   SystemBuilder& system = build.system();
-  auto& branch = system.add(MaxwellBranch::from_config(muscle.group, section));
-  system.connect(branch, "deflection", muscle.muscle + ".deflection");
-  system.connect(branch, "rest_deflection", muscle.muscle + ".rest_deflection");
-  connect_force_term(system, muscle);
+  connect_deflection_term(system, system.add(MaxwellBranch::from_config(muscle.group, section)),
+                          muscle);
 }
 
 void attach_free_convection(const ConfigNode& section, const MuscleAttachment& muscle,
                             ScenarioBuilder& build) {
-  if (!muscle.facts->thermal.heat_balance) {
-    section.fail(
-        "free convection needs a heat balance to attach to: use the physical thermal form "
-        "(a thermal section and thermal_force.form: physical)");
-  }
+  require_heat_terms(section, muscle, "free convection");
   SystemBuilder& system = build.system();
   auto& convection = system.add(FreeConvection::from_config(muscle.group, section));
   system.connect(convection, "temperature", muscle.muscle + ".temperature");
@@ -54,6 +70,31 @@ void attach_thermal_softening(const ConfigNode& section, const MuscleAttachment&
   system.connect(spring, "deflection", muscle.muscle + ".deflection");
   connect_force_term(system, muscle);
   muscle.facts->rest_force_attached = true;
+}
+
+void attach_hysteresis(const ConfigNode& section, const MuscleAttachment& muscle,
+                       ScenarioBuilder& build) {
+  SystemBuilder& system = build.system();
+  connect_deflection_term(system, system.add(Hysteresis::from_config(muscle.group, section)),
+                          muscle);
+}
+
+void attach_nonlinear_stiffness(const ConfigNode& section, const MuscleAttachment& muscle,
+                                ScenarioBuilder& build) {
+  SystemBuilder& system = build.system();
+  connect_deflection_term(
+      system, system.add(NonlinearStiffness::from_config(muscle.group, section)), muscle);
+  muscle.facts->rest_force_attached = true;
+}
+
+void attach_thermal_lag(const ConfigNode& section, const MuscleAttachment& muscle,
+                        ScenarioBuilder& build) {
+  require_heat_terms(section, muscle, "a thermal lag");
+  SystemBuilder& system = build.system();
+  auto& lag = system.add(ThermalLag::from_config(muscle.group, section));
+  system.share_input(muscle.muscle + ".power", lag, "power");
+  system.connect(lag, "temperature", muscle.muscle + ".temperature");
+  system.connect(muscle.muscle + ".heat_loss", muscle.group + ".heat_loss");
 }
 
 }  // namespace
@@ -98,6 +139,34 @@ load: {type: deflection, deflection: 20 mm}
                    ""),
                "muscle.effects[0]"}},
              EffectBuilder(attach_thermal_softening)});
+  kinds.add({kEffectCategory,
+             "hysteresis",
+             "rate-independent hysteresis in the force (Dahl): dz/dt = k_h (v - |v| z/F_h), "
+             "saturating at +-F_h, in parallel with the SLS",
+             {{example_muscle_scenario("  effects:\n    - {type: hysteresis, name: friction, "
+                                       "stiffness: 20 mN/mm, force: 5 mN}\n",
+                                       ""),
+               "muscle.effects[0]"}},
+             EffectBuilder(attach_hysteresis)});
+  kinds.add({kEffectCategory,
+             "nonlinear_stiffness",
+             "a stiffness that engages past a knee deflection (coil contact): F = k_n w "
+             "softplus((x - x_k)/w), in parallel with the SLS",
+             {{example_muscle_scenario("  effects:\n    - {type: nonlinear_stiffness, name: knee, "
+                                       "stiffness: 10 mN/mm, knee_deflection: 25 mm, "
+                                       "knee_width: 1 mm}\n",
+                                       ""),
+               "muscle.effects[0]"}},
+             EffectBuilder(attach_nonlinear_stiffness)});
+  kinds.add({kEffectCategory,
+             "thermal_lag",
+             "the heater wire as a second thermal node: C_w dT_w/dt = P - G_w (T_w - T), the "
+             "polymer heated by G_w (T_w - T) instead of P",
+             {{example_muscle_scenario("  effects:\n    - {type: thermal_lag, name: wire, "
+                                       "heat_capacity: 0.05 J/K, conductance: 0.5 W/K}\n",
+                                       ""),
+               "muscle.effects[0]"}},
+             EffectBuilder(attach_thermal_lag)});
 }
 
 }  // namespace tcpmsim
