@@ -78,15 +78,15 @@ struct detail::CvodeHandles {
   std::vector<double> relative_tolerances;  // per state; the configured rtol unless adapted
   // Forward sensitivities, when a run tracks them: s_j (CVODES' state) and s_j at an output time.
   ForwardSensitivities* sensitivities = nullptr;
+  int sensitivity_count = 0;
   N_Vector* sensitivity_state = nullptr;
   N_Vector* sensitivity_output = nullptr;
   std::vector<double*> sensitivity_pointers;
 
   ~CvodeHandles() {
     if (memory) CVodeFree(&memory);
-    const int count = sensitivities ? sensitivities->count() : 0;
-    if (sensitivity_output) N_VDestroyVectorArray(sensitivity_output, count);
-    if (sensitivity_state) N_VDestroyVectorArray(sensitivity_state, count);
+    if (sensitivity_output) N_VDestroyVectorArray(sensitivity_output, sensitivity_count);
+    if (sensitivity_state) N_VDestroyVectorArray(sensitivity_state, sensitivity_count);
     if (nonlinear_solver) SUNNonlinSolFree(nonlinear_solver);
     if (linear_solver) SUNLinSolFree(linear_solver);
     if (matrix) SUNMatDestroy(matrix);
@@ -671,6 +671,7 @@ SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output,
   auto& cv = *cvode_;
   if (cv.sensitivities) throw std::logic_error("an integrator tracks sensitivities once");
   cv.sensitivities = &sensitivities;
+  cv.sensitivity_count = sensitivities.count();
   cv.sensitivity_state = N_VCloneVectorArray(sensitivities.count(), cv.state);
   cv.sensitivity_output = N_VCloneVectorArray(sensitivities.count(), cv.state);
   for (int j = 0; j < sensitivities.count(); ++j)
