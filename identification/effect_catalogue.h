@@ -1,0 +1,48 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "identification/fit_problem.h"
+#include "sim/context.h"
+#include "sim/io/measured_data.h"
+#include "sim/scenario.h"
+
+namespace tcpmsim::fit {
+
+// A candidate of `tcpmsim discover`: a named physical effect the base model lacks, as the
+// scenario overrides that attach it to the muscle (at starting values scaled by the base
+// model as fitted) and the parameters a refit frees besides the base model's, with bounds.
+struct EffectCandidate {
+  std::string name;                      // "slow_relaxation"
+  std::string description;               // what it models
+  std::string signature;                 // the diagnostic that should give it away
+  std::vector<std::string> overrides;    // attach it ("muscle.effects=[...]"), or none
+  std::vector<FitParameter> parameters;  // freed by the refit, in the augmented model
+};
+
+// The eight effects of the catalogue, in its order: slow_relaxation, hysteresis,
+// nonlinear_convection, thermal_lag, nonlinear_stiffness, temperature_dependent_stiffness,
+// inductance_temperature, viscoelastic_relaxation.
+const std::vector<std::string>& effect_names();
+
+// A candidate that cannot join this base model, and why ("thermal_lag: the muscle reports no
+// temperature").
+struct SkippedCandidate {
+  std::string name;
+  std::string reason;
+};
+
+struct Candidates {
+  std::vector<EffectCandidate> candidates;
+  std::vector<SkippedCandidate> skipped;
+};
+
+// The catalogue for `base` (one muscle, reduced or physical thermal form), its scales taken
+// from the base model's parameters in `fitted`, the deflection range from `data`; `outputs` are
+// the model outputs compared (an inductance candidate needs one of the coil's). Effects the
+// muscle already has are kept: a candidate is appended to its `effects`.
+Candidates effect_candidates(const Scenario& base, const Context& fitted, const MeasuredData& data,
+                             const std::vector<std::string>& outputs);
+
+}  // namespace tcpmsim::fit
