@@ -2,11 +2,24 @@
 
 #include <udunits2.h>
 
+#include <mutex>
+
 namespace tcpmsim {
+
+namespace {
+// udunits2's unit parser is a non-reentrant flex/bison lexer with global state (two threads
+// parsing at once corrupt it, even in separate unit systems), so every call into the library
+// takes this one process-wide lock, mirroring the library's own global state.
+std::mutex& udunits_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+}  // namespace
 
 struct UnitSystem::Handle {
   ut_system* system = nullptr;
   ~Handle() {
+    const std::lock_guard lock(udunits_mutex());
     if (system) ut_free_system(system);
   }
 };
@@ -33,6 +46,7 @@ bool same_dimension(ut_system* system, const ut_unit* source, const ut_unit* tar
 }  // namespace
 
 UnitSystem::UnitSystem() : handle_(std::make_unique<Handle>()) {
+  const std::lock_guard lock(udunits_mutex());
   // udunits reports database redefinitions on stderr; they are not errors for us.
   ut_set_error_message_handler(ut_ignore);
   handle_->system = ut_read_xml(nullptr);
@@ -46,6 +60,7 @@ UnitSystem::UnitSystem() : handle_(std::make_unique<Handle>()) {
 UnitSystem::~UnitSystem() = default;
 
 bool UnitSystem::convertible(std::string_view from, std::string_view to) const {
+  const std::lock_guard lock(udunits_mutex());
   UnitPointer source = parse(handle_->system, from);
   UnitPointer target = parse(handle_->system, to);
   return source && target && same_dimension(handle_->system, source.get(), target.get());
@@ -53,6 +68,7 @@ bool UnitSystem::convertible(std::string_view from, std::string_view to) const {
 
 std::function<double(double)> UnitSystem::converter(std::string_view from,
                                                     std::string_view to) const {
+  const std::lock_guard lock(udunits_mutex());
   UnitPointer source = parse(handle_->system, from);
   if (!source) throw UnitError("'" + std::string(from) + "' is not a unit");
   UnitPointer target = parse(handle_->system, to);
