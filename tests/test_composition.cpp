@@ -128,6 +128,32 @@ TEST_CASE("An attached Maxwell branch relaxes with its own time constant beside 
   CHECK(max_abs_difference(bare["muscle/force"], trace["muscle/force"]) > 0.5 * kb * dx);
 }
 
+TEST_CASE("A Maxwell branch given by its time constant relaxes as c_b = k_b tau_b") {
+  // The same step as above with tau_b = 10 s instead of c_b = 50 N s/m: the analytic relaxation
+  // kb dx e^(-t / tau_b), and the run of the damping form to the solver's tolerance.
+  const std::string step =
+      "load: {type: deflection, deflection: {type: steps, initial: 20 mm, times: [1 s], "
+      "values: [25 mm]}}\n";
+  const Trace by_time = simulate(passive_muscle(
+      "  effects: [{type: maxwell_branch, name: slow, stiffness: 5 N/m, time_constant: 10 s}]\n",
+      step));
+  const double dx = 5e-3;
+  double worst = 0.0;
+  for (std::size_t k = 0; k < by_time.time.size(); ++k) {
+    const double t = by_time.time[k] - 1.0;
+    const double branch = t < 0 ? 0.0 : kb * dx * std::exp(-t / (cb / kb));
+    worst = std::max(worst, std::abs(by_time["muscle/slow/force"][k] - branch));
+  }
+  CHECK(worst < allowed(1e-10, 0.5));
+  CHECK(max_abs_difference(by_time["muscle/force"],
+                           simulate(passive_muscle(kBranch, step))["muscle/force"]) <
+        allowed(1e-10, 0.5));
+  CHECK_THAT(config_error(passive_muscle("  effects: [{type: maxwell_branch, stiffness: 5 N/m, "
+                                         "damping: 50 N*s/m, time_constant: 10 s}]\n",
+                                         step)),
+             Catch::Contains("give damping or time_constant"));
+}
+
 TEST_CASE("Under an imposed force the attached branch adds its creep time to the SLS's") {
   // Force step F0 -> F1 at t = 1 s from rest. States z = (x_d, y) with
   // x = (F - phi_0 + k2 x_d + kb y) / K, K = k1 + k2 + kb: dz/dt = A z + b, so

@@ -103,9 +103,13 @@ void register_effect_kinds(KindRegistry& kinds) {
   kinds.add({kEffectCategory,
              "maxwell_branch",
              "a spring in series with a dashpot, in parallel with the SLS: one more relaxation "
-             "time c_b/k_b (generalized Maxwell solid)",
+             "time c_b/k_b (generalized Maxwell solid); give damping c_b or time_constant",
              {{example_muscle_scenario("  effects:\n    - {type: maxwell_branch, name: slow, "
                                        "stiffness: 1.5 mN/mm, damping: 30 mN*s/mm}\n",
+                                       ""),
+               "muscle.effects[0]"},
+              {example_muscle_scenario("  effects:\n    - {type: maxwell_branch, name: slow, "
+                                       "stiffness: 1.5 mN/mm, time_constant: 20 s}\n",
                                        ""),
                "muscle.effects[0]"}},
              EffectBuilder(attach_maxwell_branch)});

@@ -11,11 +11,19 @@ MaxwellBranch::MaxwellBranch(std::string group, MaxwellBranchParameters defaults
 std::unique_ptr<MaxwellBranch> MaxwellBranch::from_config(const std::string& group,
                                                           const ConfigNode& node) {
   using P = MaxwellBranchParameters;
-  node.declare({"type", "name", "stiffness", "damping"});
+  node.declare({"type", "name", "stiffness", "damping", "time_constant"});
   P p;
   ParameterBindings<P> bind;
   bind.quantity(node, "stiffness", "N/m", ValueCheck::positive(), p, bind.member(&P::stiffness));
-  bind.quantity(node, "damping", "N*s/m", ValueCheck::positive(), p, bind.member(&P::damping));
+  if (node.has("damping") && node.has("time_constant"))
+    node.at("time_constant")
+        .fail("give damping or time_constant (= damping / stiffness), not both");
+  if (node.has("time_constant")) {
+    bind.quantity(node, "time_constant", "s", ValueCheck::positive(), p,
+                  bind.member(&P::time_constant));
+  } else {
+    bind.quantity(node, "damping", "N*s/m", ValueCheck::positive(), p, bind.member(&P::damping));
+  }
   return std::make_unique<MaxwellBranch>(group, p, std::move(bind));
 }
 
@@ -48,9 +56,9 @@ void MaxwellBranch::compute_observations(const Evaluation& evaluation) const {
 
 void MaxwellBranch::compute_derivatives(const Evaluation& evaluation, double* derivatives) const {
   const auto& p = run_parameters(evaluation);
-  set_derivative(
-      derivatives, 0,
-      sls::arm_rate(p.stiffness, p.damping, input(evaluation, kDeflection), state(evaluation, 0)));
+  set_derivative(derivatives, 0,
+                 sls::arm_rate(p.stiffness, p.dashpot(), input(evaluation, kDeflection),
+                               state(evaluation, 0)));
 }
 
 }  // namespace tcpmsim

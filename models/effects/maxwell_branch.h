@@ -18,9 +18,13 @@ namespace tcpmsim {
 // "attached_force" ports), so that the SLS can solve (7.5) for x under an imposed force; nothing
 // at rest (the relaxed arm carries no force); and F_b itself (observed) for the record. It
 // starts relaxed, y = x at the muscle's rest.
+// The branch is given by k_b and c_b, or by k_b and its relaxation time tau_b = c_b / k_b (which
+// keeps the time scale a parameter of its own while k_b is varied, as discover's candidates do).
 struct MaxwellBranchParameters {
-  double stiffness = 0.0;  // k_b [N/m]
-  double damping = 0.0;    // c_b [N s/m]
+  double stiffness = 0.0;      // k_b [N/m]
+  double damping = 0.0;        // c_b [N s/m]; 0 when given by time_constant
+  double time_constant = 0.0;  // tau_b [s]; 0 when given by damping
+  double dashpot() const { return time_constant > 0.0 ? stiffness * time_constant : damping; }
 };
 
 class MaxwellBranch final : public ParametricComponent<MaxwellBranchParameters> {
@@ -29,7 +33,7 @@ class MaxwellBranch final : public ParametricComponent<MaxwellBranchParameters> 
   enum Output { kStiffness, kOffsetForce, kRestStiffness, kRestForce, kForce };
   MaxwellBranch(std::string group, MaxwellBranchParameters defaults,
                 ParameterBindings<MaxwellBranchParameters> bindings = {});
-  // Keys stiffness, damping.
+  // Keys stiffness, and damping or time_constant (one of the two).
   static std::unique_ptr<MaxwellBranch> from_config(const std::string& group,
                                                     const ConfigNode& node);
 
