@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 
@@ -115,6 +116,57 @@ Drift drift(std::span<const double> time, std::span<const double> series) {
   for (std::size_t i = 0; i < y.size(); ++i) residual += std::pow(y[i] - slope * t[i], 2);
   const double error = std::sqrt(residual / static_cast<double>(y.size() - 2) / stt);
   return {slope, error, error > 0 ? slope / error : 0.0};
+}
+
+double correlation(std::span<const double> x_series, std::span<const double> y_series) {
+  if (x_series.size() != y_series.size())
+    throw std::invalid_argument("correlation: the series differ in length");
+  const std::vector<double> x = centred(x_series);
+  const std::vector<double> y = centred(y_series);
+  const double scale = std::sqrt(sum_of_squares(x) * sum_of_squares(y));
+  return scale > 0 ? std::inner_product(x.begin(), x.end(), y.begin(), 0.0) / scale : 0.0;
+}
+
+LoopSpectrum loop_spectrum(std::span<const double> deflection, std::span<const double> residual,
+                           double dt, std::span<const std::pair<double, double>> bands) {
+  if (deflection.size() != residual.size())
+    throw std::invalid_argument("loop spectrum: the series differ in length");
+  Eigen::FFT<double> fft;
+  std::vector<std::complex<double>> x_spectrum, r_spectrum;
+  fft.fwd(x_spectrum, centred(deflection));
+  fft.fwd(r_spectrum, centred(residual));
+  const std::size_t n = deflection.size();
+  const double resolution = 1.0 / (static_cast<double>(n) * dt);
+  std::vector<double> cross(bands.size(), 0.0), power(bands.size(), 0.0);
+  double total = 0.0;
+  for (std::size_t k = 1; k <= n / 2; ++k) {
+    const double frequency = static_cast<double>(k) * resolution;
+    total += std::norm(x_spectrum[k]);
+    for (std::size_t b = 0; b < bands.size(); ++b) {
+      if (frequency < bands[b].first || frequency >= bands[b].second) continue;
+      cross[b] += (std::conj(x_spectrum[k]) * r_spectrum[k]).imag();
+      power[b] += std::norm(x_spectrum[k]);
+    }
+  }
+  LoopSpectrum result;
+  std::vector<double> log_f, log_q;
+  for (std::size_t b = 0; b < bands.size(); ++b) {
+    // A band where x holds less than 1 % of its power says nothing of the loop.
+    if (!(power[b] > 0.01 * total)) continue;
+    const double centre = std::sqrt(bands[b].first * bands[b].second);
+    result.frequency.push_back(centre);
+    result.quadrature.push_back(cross[b] / power[b]);
+    if (result.quadrature.back() != 0.0) {
+      log_f.push_back(std::log(centre));
+      log_q.push_back(std::log(std::abs(result.quadrature.back())));
+    }
+  }
+  result.exponent = std::numeric_limits<double>::quiet_NaN();
+  if (log_f.size() >= 2) {
+    const std::vector<double> f = centred(log_f), q = centred(log_q);
+    result.exponent = std::inner_product(f.begin(), f.end(), q.begin(), 0.0) / sum_of_squares(f);
+  }
+  return result;
 }
 
 }  // namespace tcpmsim::fit

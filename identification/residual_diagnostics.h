@@ -48,4 +48,21 @@ struct Drift {
 };
 Drift drift(std::span<const double> time, std::span<const double> series);
 
+// The Pearson correlation of two series of one length (0 when either is constant).
+double correlation(std::span<const double> x, std::span<const double> y);
+
+// The loop a residual force r draws against a deflection x, band by band: from the cross-
+// spectrum of the two, the part of r in quadrature with x per unit x, q = Im(S_xr) / S_xx [unit
+// of r per unit of x], in each band [lower, upper) where x has power. Energy lost per cycle of
+// amplitude a is pi q a^2: a rate-independent loop (hysteresis) keeps q flat over frequency, a
+// viscous one grows it as f (q = 2 pi f c). `exponent` is the slope of ln|q| against ln f over
+// the bands, NaN with fewer than two.
+struct LoopSpectrum {
+  std::vector<double> frequency;  // each band's geometric centre [Hz]
+  std::vector<double> quadrature;
+  double exponent = 0.0;
+};
+LoopSpectrum loop_spectrum(std::span<const double> deflection, std::span<const double> residual,
+                           double dt, std::span<const std::pair<double, double>> bands);
+
 }  // namespace tcpmsim::fit

@@ -97,3 +97,61 @@ TEST_CASE("Drift is the slope of a ramp, within its standard error; noise alone 
   CHECK(found.t_statistic > 4);  // expected 0.003 / 3.9e-4 = 7.8, +-1
   CHECK(std::abs(drift(time, noise).t_statistic) < 4);
 }
+
+TEST_CASE("The loop a viscous residual draws grows as f, with quadrature 2 pi f c") {
+  // x: three sines in separate bands; r = c dx/dt, a dashpot's force: pi q a^2 per cycle.
+  const double dt = 1.0 / 16.0, c = 0.3;
+  const std::size_t n = 16 * 1000;
+  const std::vector<double> frequencies = {0.02, 0.08, 0.32};
+  std::vector<double> x(n, 0.0), r(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = static_cast<double>(i) * dt;
+    for (double f : frequencies) {
+      x[i] += 1e-3 * std::sin(2 * std::numbers::pi * f * t);
+      r[i] += c * 1e-3 * 2 * std::numbers::pi * f * std::cos(2 * std::numbers::pi * f * t);
+    }
+  }
+  const std::vector<std::pair<double, double>> bands = {{0.01, 0.04}, {0.04, 0.16}, {0.16, 0.64}};
+  const LoopSpectrum loop = loop_spectrum(x, r, dt, bands);
+  REQUIRE(loop.quadrature.size() == 3);
+  for (std::size_t b = 0; b < 3; ++b)
+    CHECK(loop.quadrature[b] == Approx(2 * std::numbers::pi * frequencies[b] * c).epsilon(1e-6));
+  CHECK(loop.exponent == Approx(1.0).epsilon(1e-6));
+  // An elastic residual (in phase with x) draws no loop.
+  const LoopSpectrum elastic = loop_spectrum(x, x, dt, bands);
+  for (double q : elastic.quadrature) CHECK(std::abs(q) < 1e-12);
+}
+
+TEST_CASE("The loop of a rate-independent relay, F sign(dx/dt), does not depend on frequency") {
+  // Its first harmonic in quadrature with x = a sin(wt) is (4 F / pi) cos(wt): q = 4 F / (pi a)
+  // at any frequency (describing function of an ideal relay).
+  const double dt = 1.0 / 16.0, a = 2e-3, force = 5e-3;
+  const std::size_t n = 16 * 1000;
+  std::vector<double> quadratures;
+  for (double f : {0.02, 0.08}) {
+    std::vector<double> x(n), r(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double phase = 2 * std::numbers::pi * f * static_cast<double>(i) * dt;
+      x[i] = a * std::sin(phase);
+      r[i] = std::cos(phase) > 0 ? force : -force;
+    }
+    const std::vector<std::pair<double, double>> band = {{0.5 * f, 2 * f}};
+    const LoopSpectrum loop = loop_spectrum(x, r, dt, band);
+    REQUIRE(loop.quadrature.size() == 1);
+    quadratures.push_back(loop.quadrature[0]);
+    CHECK(loop.quadrature[0] == Approx(4 * force / (std::numbers::pi * a)).epsilon(0.01));
+  }
+  CHECK(quadratures[0] == Approx(quadratures[1]).epsilon(0.01));
+}
+
+TEST_CASE("Correlation is Pearson's: 1 for a line, -1 reversed, near 0 for independent noise") {
+  const auto x = white(2000, 11);
+  std::vector<double> line, reversed;
+  for (double v : x) {
+    line.push_back(3 * v + 2);
+    reversed.push_back(-v);
+  }
+  CHECK(correlation(x, line) == Approx(1.0).epsilon(1e-12));
+  CHECK(correlation(x, reversed) == Approx(-1.0).epsilon(1e-12));
+  CHECK(std::abs(correlation(x, white(2000, 12))) < 4 / std::sqrt(2000.0));
+}
