@@ -47,3 +47,5 @@ echo "== sweeps: throughput on 1 and 2 threads and under mpirun -n 2, per-run ov
 /usr/bin/python3 bench/bench_sweep.py "$build_dir"
 echo "== fit of the six force-model parameters on 620 s of 16 Hz data (target < 5 s)"
 /usr/bin/python3 bench/bench_fit.py "$build_dir"
+echo "== discover over the whole effect catalogue on 620 s of 16 Hz data (target < 2 min)"
+/usr/bin/python3 bench/bench_discover.py "$build_dir"

@@ -15,6 +15,7 @@
 #include "analysis/spring_forces_command.h"
 #include "cli/progress.h"
 #include "identification/bench_measurement.h"
+#include "identification/discovery_report.h"
 #include "identification/fit_report.h"
 #include "kinds/standard_kinds.h"
 #include "sim/config/config_error.h"
@@ -55,6 +56,8 @@ struct Options {
   std::string fit_directory;  // fit: where its outputs go
   std::string bench;          // measure: the bench file
   int fit_jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  tcpmsim::fit::DiscoverRequest discover;  // discover
+  bool plots = true;
 };
 
 tcpmsim::Scenario load(const Options& options) {
@@ -235,6 +238,48 @@ int fit(const Options& options) {
   if (!options.quiet) {
     std::cout << tcpmsim::fit::fit_summary(spec, result);
     for (const auto& file : written) std::cout << "wrote " << file << "\n";
+  }
+  return kSuccess;
+}
+
+// The missing effect: a base model fitted, diagnosed, and refitted with each named effect.
+int discover(const Options& options) {
+  auto units = std::make_shared<tcpmsim::UnitSystem>();
+  tcpmsim::fit::DiscoverRequest request = options.discover;
+  request.threads = options.fit_jobs;
+  request.overrides = options.overrides;
+  tcpmsim::fit::DiscoverSetup setup;
+  try {
+    setup = tcpmsim::fit::setup_discovery(request, units);
+  } catch (const std::invalid_argument& error) {
+    std::cerr << "tcpmsim discover: " << error.what() << "\n";
+    return kUsageError;
+  }
+  const std::string& directory = options.fit_directory;
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
+  if (error) throw std::runtime_error("cannot write " + directory + ": " + error.message());
+  tcpmsim::fit::Discovery discovery;
+  try {
+    discovery = tcpmsim::fit::discover(setup);
+  } catch (const tcpmsim::fit::FitFailure& failure) {
+    std::cerr << "tcpmsim: the base model's fit failed: " << failure.what() << "\n";
+    return kSimulationFailed;
+  }
+  const auto written = tcpmsim::fit::write_discovery(directory, discovery);
+  if (options.plots) {
+    // The residuals before and after, and the diagnostic that gave the effect away.
+    const std::string command = std::string("'") + TCPMSIM_PLOT_TOOL + "' discovery '" + directory +
+                                "' -o '" + directory + "'";
+    if (std::system(command.c_str()) != 0)
+      throw std::runtime_error("the plots of " + directory + " could not be drawn (" + command +
+                               "); --no-plots leaves them out");
+  }
+  if (!options.quiet) {
+    std::cout << tcpmsim::fit::discovery_summary(discovery);
+    for (const auto& file : written) std::cout << "wrote " << file << "\n";
+    if (options.plots)
+      std::cout << "wrote " << directory << "/residuals.png, " << directory << "/diagnostic.png\n";
   }
   return kSuccess;
 }
@@ -425,6 +470,52 @@ int main(int argc, char** argv) {
                           "Finish an interrupted sweep: redo only the runs not done");
   sweep_command->add_flag("-q,--quiet", options.quiet, "No progress or summary");
 
+  CLI::App* discover_command = app.add_subcommand(
+      "discover",
+      "Find the effect a model lacks: fit it, locate where it disagrees with the data, refit "
+      "it with each named effect, rank them (BIC, validation error) and name the missing one");
+  auto& request = options.discover;
+  discover_command->add_option("--model", request.model_file, "Base model (scenario YAML)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  discover_command->add_option("--data", request.data_file, "The measurement (CSV or record)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  discover_command->add_option("--inputs", request.inputs, "Channels the model replays")
+      ->required()
+      ->delimiter(',');
+  discover_command
+      ->add_option("--outputs", request.outputs,
+                   "Channels compared: force, or force=load.force to name the model output")
+      ->required()
+      ->delimiter(',');
+  discover_command
+      ->add_option("--validate-from", request.validate_from,
+                   "Time [s] the validation window starts; the identification window ends there")
+      ->required();
+  discover_command->add_option("--out", options.fit_directory, "Output directory")->required();
+  discover_command
+      ->add_option("--parameters", request.parameters,
+                   "Base-model parameters to fit (default: thermal, SLS and coil laws')")
+      ->delimiter(',');
+  discover_command->add_option("--effects", request.effects, "Candidates (default: all eight)")
+      ->delimiter(',');
+  discover_command->add_option("--set", options.overrides, "Override a value of the model")
+      ->type_name("KEY.PATH=VALUE");
+  discover_command->add_option("--starts", request.starts, "Multistart points per fit")
+      ->check(CLI::Range(0, 1000));
+  discover_command->add_option("--seed", request.seed, "Seed of the multistart");
+  discover_command
+      ->add_option("--bic-threshold", request.bic_threshold,
+                   "BIC decrease a significant effect must exceed")
+      ->check(CLI::NonNegativeNumber);
+  discover_command->add_option("-j,--jobs", options.fit_jobs, "Candidates fitted at once (threads)")
+      ->check(CLI::Range(1, 256));
+  discover_command->add_flag(
+      "--no-plots", [&](std::int64_t) { options.plots = false; },
+      "Leave out residuals.png and diagnostic.png");
+  discover_command->add_flag("-q,--quiet", options.quiet, "No summary");
+
   CLI::App* measure_command = app.add_subcommand(
       "measure", "Run a scenario and read it with a bench's instruments: a measurement CSV");
   add_common(*measure_command, options);
@@ -470,5 +561,6 @@ int main(int argc, char** argv) {
   if (sweep_command->parsed()) return guarded(sweep, options);
   if (fit_command->parsed()) return guarded(fit, options);
   if (measure_command->parsed()) return guarded(measure, options);
+  if (discover_command->parsed()) return guarded(discover, options);
   return guarded(validate, options);
 }

@@ -23,23 +23,12 @@ struct BaseModel {
   std::string lambda_path;                                       // <muscle>.inductance.lambda_T
   double lambda_scale = 0.0;                                     // |lambda_0|
   YAML::Node effects;                                            // the muscle's own, if any
+  YAML::Node inductance;                                         // its coil law's section
 };
 
 std::optional<double> parameter(const Context& context, const std::string& path) {
   if (!context.system().parameter_index(path)) return std::nullopt;
   return context.parameter(path);
-}
-
-std::string only_muscle(const System& system) {
-  std::string found;
-  for (const auto& component : system.components()) {
-    if (component->kind() != "sls_mechanics") continue;
-    if (!found.empty())
-      throw std::invalid_argument("discover needs a model of one muscle; this one has several");
-    found = component->group();
-  }
-  if (found.empty()) throw std::invalid_argument("discover needs a model with a muscle");
-  return found;
 }
 
 BaseModel read_base(const Scenario& scenario, const Context& fitted, const MeasuredData& data,
@@ -74,11 +63,21 @@ BaseModel read_base(const Scenario& scenario, const Context& fitted, const Measu
     base.lambda_scale = std::abs(*lambda_0);
   const YAML::Node resolved = YAML::Load(scenario.resolved_yaml);
   if (resolved[m] && resolved[m]["effects"]) base.effects = YAML::Clone(resolved[m]["effects"]);
+  if (resolved[m] && resolved[m]["inductance"])
+    base.inductance = YAML::Clone(resolved[m]["inductance"]);
   return base;
 }
 
 std::string quantity(double value, const std::string& unit) {
   return number_text(value, 17) + (unit == "1" ? "" : " " + unit);
+}
+
+std::string flow_text(const YAML::Node& node) {
+  YAML::Emitter flow;
+  flow.SetMapFormat(YAML::Flow);
+  flow.SetSeqFormat(YAML::Flow);
+  flow << node;
+  return flow.c_str();
 }
 
 // Builds one candidate: an effect section appended to the muscle's effects, its fitted keys.
@@ -111,6 +110,18 @@ class CandidateBuilder {
         {base_.muscle + ".effects[" + std::to_string(index) + "]." + key, unit, lower, upper});
     return *this;
   }
+  // A key of the muscle's section `section` set to `value` in the scenario the candidate builds
+  // (not in a run's context: a term the base model lacks is assembled only when given).
+  CandidateBuilder& set_in_section(const std::string& section, const YAML::Node& resolved,
+                                   const std::string& key, double value, const std::string& unit) {
+    YAML::Node changed = YAML::Clone(resolved);
+    changed[key] = quantity(value, unit);
+    // A temperature term is referred to a temperature: the ambient, unless the section has one.
+    if (!changed["reference_temperature"])
+      changed["reference_temperature"] = quantity(base_.ambient, "K");
+    candidate_.overrides.push_back(base_.muscle + "." + section + "=" + flow_text(changed));
+    return *this;
+  }
   // A parameter of the base model the refit frees.
   CandidateBuilder& free_base(const std::string& path, double lower, double upper,
                               const std::string& unit) {
@@ -122,11 +133,7 @@ class CandidateBuilder {
       YAML::Node effects =
           base_.effects ? YAML::Clone(base_.effects) : YAML::Node(YAML::NodeType::Sequence);
       effects.push_back(section_);
-      YAML::Emitter flow;
-      flow.SetMapFormat(YAML::Flow);
-      flow.SetSeqFormat(YAML::Flow);
-      flow << effects;
-      candidate_.overrides.push_back(base_.muscle + ".effects=" + flow.c_str());
+      candidate_.overrides.push_back(base_.muscle + ".effects=" + flow_text(effects));
     }
     return candidate_;
   }
@@ -138,6 +145,18 @@ class CandidateBuilder {
 };
 
 }  // namespace
+
+std::string only_muscle(const System& system) {
+  std::string found;
+  for (const auto& component : system.components()) {
+    if (component->kind() != "sls_mechanics") continue;
+    if (!found.empty())
+      throw std::invalid_argument("discover needs a model of one muscle; this one has several");
+    found = component->group();
+  }
+  if (found.empty()) throw std::invalid_argument("discover needs a model with a muscle");
+  return found;
+}
 
 const std::vector<std::string>& effect_names() {
   static const std::vector<std::string> names = {
@@ -156,19 +175,21 @@ Candidates effect_candidates(const Scenario& scenario, const Context& fitted,
     result.skipped.push_back({name, reason});
   };
   const double k1 = base.k1, k2 = base.k2, c = base.heat_capacity, ha = base.conductance;
-  // A further viscoelastic branch: its time constant damping / stiffness is what tells the two
-  // apart, long (minutes: warm-up) or of the SLS's own order (seconds).
+  // A further viscoelastic branch, told apart by its relaxation time: minutes (warm-up) for
+  // slow_relaxation, seconds (the SLS's own order) for viscoelastic_relaxation; the two ranges
+  // meet at 30 s and do not overlap.
   result.candidates.push_back(
       CandidateBuilder(base, "slow_relaxation",
                        "a second viscoelastic branch with a long time constant (warm-up)",
                        "drift; low-frequency residual power")
           .attach("maxwell_branch")
           .free("stiffness", 0.2 * k2, 0.005 * k2, 3.0 * k2, "N/m")
-          .free("damping", 0.2 * k2 * 100.0, 0.005 * k2 * 20.0, 3.0 * k2 * 2000.0, "N*s/m")
+          .free("time_constant", 200.0, 30.0, 3000.0, "s")
           .build());
   result.candidates.push_back(
-      CandidateBuilder(base, "hysteresis", "rate-independent hysteresis in the force (Dahl)",
-                       "residual against sign(dx/dt); loop area independent of frequency")
+      CandidateBuilder(
+          base, "hysteresis", "rate-independent hysteresis in the force (Dahl)",
+          "residual against the direction of the last motion; loop area flat in frequency")
           .attach("hysteresis")
           .free("stiffness", k1, 0.05 * k1, 50.0 * k1, "N/m")
           .free("force", 2e-3, 5e-5, 5e-2, "N")
@@ -224,28 +245,31 @@ Candidates effect_candidates(const Scenario& scenario, const Context& fitted,
   }
   if (!base.coil_output) {
     skip("inductance_temperature", "no output of the coil (inductance or L*) is compared");
-  } else if (!base.temperature || !scenario.system->parameter_index(base.lambda_path)) {
+  } else if (!base.temperature || !base.inductance ||
+             !scenario.system->parameter_index(base.lambda_path)) {
     skip("inductance_temperature", "the muscle's coil has no temperature term to free");
   } else {
-    // The impedance law's own lambda_T (T - T_ref) term, zero in the base model.
+    // The impedance law's own lambda_T (T - T_ref) term, zero in the base model: a coil built
+    // without it has no temperature input, so the candidate starts it off zero.
     const double scale = base.lambda_scale > 0.0 ? base.lambda_scale : 1.0;
     const auto index = *scenario.system->parameter_index(base.lambda_path);
+    const std::string unit =
+        scenario.system->parameters()[static_cast<std::size_t>(index)].declaration.unit;
     result.candidates.push_back(
         CandidateBuilder(base, "inductance_temperature",
                          "the inductance measure depends on temperature",
                          "L* residual against temperature")
-            .free_base(
-                base.lambda_path, -0.01 * scale, 0.01 * scale,
-                scenario.system->parameters()[static_cast<std::size_t>(index)].declaration.unit)
+            .set_in_section("inductance", base.inductance, "lambda_T", 1e-5 * scale, unit)
+            .free_base(base.lambda_path, -0.01 * scale, 0.01 * scale, unit)
             .build());
   }
-  result.candidates.push_back(
-      CandidateBuilder(base, "viscoelastic_relaxation",
-                       "an SLS branch, for base models that lack one", "residual against dx/dt")
-          .attach("maxwell_branch")
-          .free("stiffness", 0.5 * k2, 0.005 * k2, 5.0 * k2, "N/m")
-          .free("damping", 0.5 * k2 * 2.0, 0.005 * k2 * 0.05, 5.0 * k2 * 20.0, "N*s/m")
-          .build());
+  result.candidates.push_back(CandidateBuilder(base, "viscoelastic_relaxation",
+                                               "an SLS branch, for base models that lack one",
+                                               "residual against dx/dt")
+                                  .attach("maxwell_branch")
+                                  .free("stiffness", 0.5 * k2, 0.005 * k2, 5.0 * k2, "N/m")
+                                  .free("time_constant", 5.0, 0.05, 30.0, "s")
+                                  .build());
   return result;
 }
 

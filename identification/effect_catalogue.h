@@ -26,6 +26,10 @@ struct EffectCandidate {
 // inductance_temperature, viscoelastic_relaxation.
 const std::vector<std::string>& effect_names();
 
+// The one muscle of a base model (its instance name); std::invalid_argument if it has none or
+// several.
+std::string only_muscle(const System& system);
+
 // A candidate that cannot join this base model, and why ("thermal_lag: the muscle reports no
 // temperature").
 struct SkippedCandidate {

@@ -32,31 +32,6 @@ TimeWindow read_window(const ConfigNode& root, std::string_view key, const Measu
   return {from, to};
 }
 
-// The model must record at least as often as the data are sampled, from before the windows:
-// its outputs are compared at the data's sample times (interpolated between its own).
-void check_output_rate(const ConfigNode& root, const Scenario& model, const MeasuredData& data,
-                       double from) {
-  const auto& time = data.time();
-  std::vector<double> intervals;
-  for (std::size_t k = 1; k < time.size(); ++k) intervals.push_back(time[k] - time[k - 1]);
-  if (intervals.empty()) root.fail("the data hold a single sample; a fit needs a time series");
-  std::nth_element(intervals.begin(), intervals.begin() + static_cast<long>(intervals.size() / 2),
-                   intervals.end());
-  const double sampled = intervals[intervals.size() / 2];
-  if (model.settings.output_interval > sampled * (1 + 1e-9)) {
-    root.at("model").fail(
-        "the model records at " + number_text(1 / model.settings.output_interval, 6) +
-        " Hz, less often than the data are sampled (" + number_text(1 / sampled, 6) +
-        " Hz); set its output.rate to at least that " +
-        "(set: [output.rate=" + number_text(1 / sampled, 6) + " Hz])");
-  }
-  if (model.settings.output_start > from) {
-    root.at("model").fail("the model records from output.start " +
-                          number_text(model.settings.output_start, 6) +
-                          " s, after the identification window starts");
-  }
-}
-
 std::vector<FitOutput> read_outputs(const ConfigNode& root, const Scenario& model,
                                     const MeasuredData& data) {
   std::vector<FitOutput> outputs;
@@ -145,6 +120,30 @@ Gradient read_gradient(const ConfigNode& root, const FitProblem& problem) {
 
 }  // namespace
 
+// The model must record at least as often as the data are sampled, from before the windows:
+// its outputs are compared at the data's sample times (interpolated between its own).
+std::string output_rate_problem(const Scenario& model, const MeasuredData& data, double from,
+                                std::string_view set_before, std::string_view set_after) {
+  const auto& time = data.time();
+  std::vector<double> intervals;
+  for (std::size_t k = 1; k < time.size(); ++k) intervals.push_back(time[k] - time[k - 1]);
+  if (intervals.empty()) return "the data hold a single sample; a fit needs a time series";
+  std::nth_element(intervals.begin(), intervals.begin() + static_cast<long>(intervals.size() / 2),
+                   intervals.end());
+  const double sampled = intervals[intervals.size() / 2];
+  if (model.settings.output_interval > sampled * (1 + 1e-9)) {
+    return "the model records at " + number_text(1 / model.settings.output_interval, 6) +
+           " Hz, less often than the data are sampled (" + number_text(1 / sampled, 6) +
+           " Hz); set its output.rate to at least that (" + std::string(set_before) +
+           "output.rate=" + number_text(1 / sampled, 6) + " Hz" + std::string(set_after) + ")";
+  }
+  if (model.settings.output_start > from) {
+    return "the model records from output.start " + number_text(model.settings.output_start, 6) +
+           " s, after the identification window starts";
+  }
+  return "";
+}
+
 FitSpec load_fit(const std::string& file, const std::vector<std::string>& overrides,
                  const std::string& data_override, int threads,
                  std::shared_ptr<const UnitSystem> units) {
@@ -185,7 +184,11 @@ FitSpec load_fit(const std::string& file, const std::vector<std::string>& overri
     sweep::blame_set(root, "model", error);
     throw;
   }
-  check_output_rate(root, *model, *data, identification.from);
+  if (const std::string problem =
+          output_rate_problem(*model, *data, identification.from, "set: [", "]");
+      !problem.empty()) {
+    root.at(problem.find("single sample") != std::string::npos ? "data" : "model").fail(problem);
+  }
   spec.problem.model = model;
   spec.problem.data = data;
   spec.problem.identification = identification;

@@ -31,6 +31,12 @@ struct FitSpec {
   FitSettings settings;
 };
 
+// Why `model` cannot be compared with `data` from time `from` on: it records less often than
+// the data are sampled, or only after `from`; "" when it can. The remedy is written as
+// set_before + "output.rate=16 Hz" + set_after.
+std::string output_rate_problem(const Scenario& model, const MeasuredData& data, double from,
+                                std::string_view set_before, std::string_view set_after);
+
 FitSpec load_fit(const std::string& file, const std::vector<std::string>& overrides,
                  const std::string& data_override, int threads,
                  std::shared_ptr<const UnitSystem> units);

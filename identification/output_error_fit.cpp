@@ -219,7 +219,7 @@ Refined refine(const FitProblem& problem, const Residuals& residuals, const FitS
   options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
   options.linear_solver_type = ceres::DENSE_QR;
   options.max_num_iterations = settings.max_iterations;
-  options.function_tolerance = 1e-8;
+  options.function_tolerance = settings.function_tolerance;
   options.parameter_tolerance = 1e-8;
   options.gradient_tolerance = 1e-12;
   options.logging_type = ceres::SILENT;
@@ -245,7 +245,10 @@ std::vector<std::vector<double>> starting_points(const FitProblem& problem,
     const auto& parameter = problem.parameters[j];
     points[0][j] =
         (context.parameter(parameter.path) - parameter.lower) / (parameter.upper - parameter.lower);
-    if (settings.starts == 0) continue;
+    if (settings.starts == 0 || j < settings.screened_from) {
+      for (std::size_t s = 1; s < points.size(); ++s) points[s][j] = points[0][j];
+      continue;
+    }
     RandomStream stream(settings.seed, "fit start " + parameter.path);
     const auto column =
         sweep::latin_hypercube_values(0.0, 1.0, settings.starts, sweep::Spacing::linear, stream);

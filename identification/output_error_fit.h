@@ -21,10 +21,15 @@ struct FitSettings {
   // best of them, and the best refined result is the estimate.
   int starts = 8;
   int refine = 1;
+  // The multistart draws the parameters from this index on; those before it start at the
+  // model's values in every point (discover's candidates: the base model as fitted).
+  std::size_t screened_from = 0;
   std::uint64_t seed = 1;
   int threads = 2;                // simulations at once (finite differences, screening)
   double difference_step = 1e-4;  // of each parameter's bound range, for forward differences
   int max_iterations = 50;
+  // Levenberg-Marquardt stops when an iteration lowers the cost by less than this fraction.
+  double function_tolerance = 1e-8;
   Gradient gradient = Gradient::automatic;
 };
 

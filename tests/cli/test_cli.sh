@@ -130,6 +130,20 @@ contains "$work/out" "muscle.mechanics.k1" "the summary lists the parameters"
 contains "$work/out" "validation     force" "the summary scores the validation window"
 [[ -s $work/fit/fit.json && -s $work/fit/fitted.yaml && -s $work/fit/fit.h5 ]] && echo "ok: fit.json, fitted.yaml, fit.h5" || { echo "FAIL: fit outputs missing"; failures=$((failures + 1)); }
 expect 0 "the fitted scenario runs as it is" -- "$tcpmsim" run "$work/fit/fitted.yaml" -o "$work/fitted.h5" --quiet
+# discover: a request it cannot serve is refused before any fit, and nothing is written.
+expect 2 "discover with an input the model does not replay is a usage error" -- "$tcpmsim" discover \
+  --model "$discover/ch7_base.yaml" --data "$work/measured.csv" --inputs power,force --outputs force \
+  --validate-from 400 --out "$work/discover"
+contains "$work/err" "tcpmsim discover: --inputs: the model" "the discover error names the option"
+contains "$work/err" "replays no channel 'force'" "the discover error says what is missing"
+expect 2 "discover with an unknown effect is a usage error" -- "$tcpmsim" discover \
+  --model "$discover/ch7_base.yaml" --data "$work/measured.csv" --inputs power,deflection \
+  --outputs force --validate-from 400 --effects warm_up --out "$work/discover"
+contains "$work/err" "--effects: no effect 'warm_up'" "the unknown effect is named"
+expect 3 "discover on a bad measurement is a data-file error" -- "$tcpmsim" discover \
+  --model "$discover/ch7_base.yaml" --data "$work/bad.csv" --inputs power,deflection \
+  --outputs force --validate-from 0.5 --out "$work/discover"
+[[ ! -e $work/discover ]] && echo "ok: nothing written on a discover error" || { echo "FAIL: a discover directory after an error"; failures=$((failures + 1)); }
 
 if /usr/bin/python3 -c "import h5py, matplotlib" 2>/dev/null; then
   expect 0 "the plot tool reads the record" -- "$source_dir/tools/tcpmsim-plot" traces "$work/run.h5" -o "$work/run.png"

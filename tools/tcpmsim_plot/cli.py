@@ -5,6 +5,7 @@ from tcpmsim_plot import __doc__ as overview
 from tcpmsim_plot.bode import plot_bode
 from tcpmsim_plot.bundle import plot_bundle
 from tcpmsim_plot.common import PlotError, fail
+from tcpmsim_plot.discovery import plot_discovery
 from tcpmsim_plot.steps import plot_steps
 from tcpmsim_plot.sweep import plot_sweep
 from tcpmsim_plot.traces import DEFAULT_CHANNELS, plot_traces
@@ -45,6 +46,9 @@ def parser():
     bundle = command("bundle", "a bundle's per-muscle temperature spread", "a tcpmsim run's record")
     bundle.add_argument("--bundle", default="bundle", help="the bundle's name (default: %(default)s)")
     bundle.add_argument("--time", type=float, help="time of the cross-section [s] (default: the end)")
+    command("discovery", "tcpmsim discover's residuals before and after, and its diagnostic",
+            "tcpmsim discover's output directory (-o: the directory for residuals.png and "
+            "diagnostic.png)")
     return top
 
 
@@ -61,6 +65,8 @@ def main(argv=None):
         elif arguments.command == "sweep":
             plot_sweep(arguments.file, arguments.x, arguments.y, arguments.metric,
                        output_of(arguments, f"_{arguments.metric}.png"), arguments.colour)
+        elif arguments.command == "discovery":
+            plot_discovery(arguments.file, arguments.output)
         else:
             plot_bundle(arguments.file, arguments.bundle, arguments.time,
                         output_of(arguments, "_bundle.png"))

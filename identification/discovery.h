@@ -1,0 +1,65 @@
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "identification/discovery_diagnostics.h"
+#include "identification/discovery_setup.h"
+#include "identification/effect_catalogue.h"
+
+// `tcpmsim discover` (issue 12): fit a base model to the identification window of a
+// measurement, locate where it disagrees with the validation window, refit the base model with
+// each named effect of the catalogue attached, rank them by BIC and validation error, and name
+// the effect that is missing, or none.
+namespace tcpmsim::fit {
+
+// One candidate's outcome.
+struct CandidateOutcome {
+  std::string name;
+  std::string description;
+  std::string status;  // "fitted", "failed" (message in reason), "skipped" (reason)
+  std::string reason;
+  FitSpec spec;  // the augmented model's fit
+  FitResult result;
+  double bic = 0.0;
+  double delta_bic = 0.0;               // against the base model; negative is better
+  std::vector<double> validation_rmse;  // per output
+  double gap_shrink = 0.0;              // 1 - combined rmse_aug / rmse_base
+  // Its signature in the validation window, which the fit has not seen: the change d it makes
+  // to the outputs against the base model's residual r (noise-weighted sums over the outputs),
+  // as the correlation sum(r d) / (|r| |d|), and as the matched-filter statistic
+  // z = sum(r d / sigma^2) / sqrt(sum(d^2 / sigma^2)), standard normal when r is only noise.
+  double signature_match = 0.0;
+  double signature_z = 0.0;
+  std::string signature;           // the diagnostic that should give it away
+  std::string signature_evidence;  // that diagnostic's value on the base residual
+  bool significant = false;
+  double seconds = 0.0;  // wall time of its fit
+};
+
+struct Discovery {
+  DiscoverSetup setup;
+  FitResult base;
+  double base_bic = 0.0;
+  std::vector<double> noise;        // per output, the base fit's identification RMSE: the weights
+  ResidualDiagnostics diagnostics;  // of the base model on the validation window
+  std::vector<CandidateOutcome> candidates;  // ranked: significant first, then by delta_bic
+  std::vector<SkippedCandidate> skipped;
+  std::string verdict;  // an effect's name, or "none"
+  int simulations = 0;
+  double seconds = 0.0;
+};
+
+Discovery discover(const DiscoverSetup& setup);
+
+// The combined validation RMSE of several outputs, each over its noise: sqrt(mean (rmse/noise)^2).
+double combined_rmse(const std::vector<double>& rmse, const std::vector<double>& noise);
+
+// BIC of a least-squares fit with an unknown variance per output:
+// sum_k n ln(RSS_k / n) + p ln(N), with RSS_k = n rmse_k^2 and N = n * outputs.
+double bic(const WindowScore& identification, std::size_t parameters);
+
+}  // namespace tcpmsim::fit

@@ -1,0 +1,331 @@
+#include "identification/discovery_report.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "identification/fit_report.h"
+#include "sim/io/hdf5_writer.h"
+#include "sim/value_check.h"
+
+namespace tcpmsim::fit {
+
+namespace {
+
+nlohmann::json number_or_null(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+const FitProblem& problem_of(const Discovery& discovery) {
+  return discovery.setup.base.problem;
+}
+
+// The verdict's outcome, or null.
+const CandidateOutcome* verdict_of(const Discovery& discovery) {
+  if (discovery.verdict == "none") return nullptr;
+  return &discovery.candidates.front();
+}
+
+nlohmann::json rmse_json(const Discovery& discovery, const std::vector<double>& rmse) {
+  nlohmann::json json = nlohmann::json::object();
+  const auto& outputs = problem_of(discovery).outputs;
+  for (std::size_t k = 0; k < rmse.size(); ++k) json[outputs[k].channel] = number_or_null(rmse[k]);
+  return json;
+}
+
+nlohmann::json estimates_json(const FitResult& result) {
+  nlohmann::json json = nlohmann::json::array();
+  for (const auto& estimate : result.estimates) {
+    json.push_back({{"path", estimate.path},
+                    {"unit", estimate.unit},
+                    {"estimate", estimate.value},
+                    {"standard_error", number_or_null(estimate.standard_error)}});
+  }
+  return json;
+}
+
+nlohmann::json diagnostics_json(const ResidualDiagnostics& diagnostics) {
+  nlohmann::json json = nlohmann::json::object();
+  json["white_noise_bound"] = diagnostics.bound;
+  json["bands_hz"] = diagnostics.bands;
+  for (const auto& output : diagnostics.outputs) {
+    nlohmann::json entry;
+    entry["ljung_box"] = {{"lags", output.whiteness.lags},
+                          {"statistic", output.whiteness.statistic},
+                          {"p_value", output.whiteness.p_value}};
+    entry["drift"] = {{"slope", output.drift.slope},
+                      {"standard_error", output.drift.standard_error},
+                      {"t", output.drift.t_statistic}};
+    entry["band_share"] = output.band_share;
+    for (const auto& [input, cross] : output.inputs)
+      entry["input_cross_correlation"][input] = {
+          {"peak", cross.peak}, {"peak_lag_samples", cross.peak_lag}, {"bound", cross.bound}};
+    for (const auto& [feature, value] : output.features)
+      entry["feature_correlation"][feature] = number_or_null(value);
+    entry["loop"] = {{"frequency_hz", output.loop.frequency},
+                     {"quadrature", output.loop.quadrature},
+                     {"exponent", number_or_null(output.loop.exponent)}};
+    json["outputs"][output.channel] = entry;
+  }
+  return json;
+}
+
+FitSpec spec_for_yaml(const FitSpec& spec, const std::string& data_file) {
+  FitSpec copy = spec;
+  copy.file = "discover";
+  copy.data_file = data_file;
+  return copy;
+}
+
+std::string text(double value, int digits = 3) {
+  return number_text(value, digits);
+}
+
+}  // namespace
+
+std::string discovery_json(const Discovery& discovery) {
+  nlohmann::json json;
+  json["verdict"] = discovery.verdict;
+  json["model"] = discovery.setup.request.model_file;
+  json["data"] = discovery.setup.request.data_file;
+  json["ranking"] = nlohmann::json::array();
+  for (const auto& candidate : discovery.candidates) {
+    nlohmann::json entry = {{"effect", candidate.name}, {"status", candidate.status}};
+    if (candidate.status == "fitted") {
+      entry["delta_bic"] = candidate.delta_bic;
+      entry["validation_rmse"] = rmse_json(discovery, candidate.validation_rmse);
+      entry["gap_shrink"] = candidate.gap_shrink;
+      entry["signature_match"] = candidate.signature_match;
+      entry["signature_z"] = candidate.signature_z;
+      entry["significant"] = candidate.significant;
+      entry["signature"] = candidate.signature;
+      entry["evidence"] = candidate.signature_evidence;
+      entry["parameters"] = estimates_json(candidate.result);
+      entry["simulations"] = candidate.result.simulations;
+      entry["iterations"] = candidate.result.iterations;
+      entry["gradient"] = candidate.result.gradient;
+      entry["seconds"] = candidate.seconds;
+    } else {
+      entry["reason"] = candidate.reason;
+    }
+    json["ranking"].push_back(entry);
+  }
+  json["skipped"] = nlohmann::json::array();
+  for (const auto& skipped : discovery.skipped)
+    json["skipped"].push_back({{"effect", skipped.name}, {"reason", skipped.reason}});
+  json["baseline"] = {
+      {"validation_rmse", rmse_json(discovery, discovery.base.validation.rmse)},
+      {"identification_rmse", rmse_json(discovery, discovery.base.identification.rmse)},
+      {"bic", discovery.base_bic},
+      {"simulations", discovery.base.simulations},
+      {"gradient", discovery.base.gradient},
+      {"parameters", estimates_json(discovery.base)}};
+  const CandidateOutcome* verdict = verdict_of(discovery);
+  const auto& augmented_rmse = verdict ? verdict->validation_rmse : discovery.base.validation.rmse;
+  json["augmented"] = {{"effect", verdict ? nlohmann::json(verdict->name) : nullptr},
+                       {"validation_rmse", rmse_json(discovery, augmented_rmse)},
+                       {"parameters", estimates_json(verdict ? verdict->result : discovery.base)}};
+  json["gap_shrink"] = verdict ? verdict->gap_shrink : 0.0;
+  json["noise"] = rmse_json(discovery, discovery.noise);
+  json["spikes_replaced"] = nlohmann::json::object();
+  for (std::size_t k = 0; k < discovery.setup.cleaned.size(); ++k)
+    json["spikes_replaced"][problem_of(discovery).outputs[k].channel] = discovery.setup.cleaned[k];
+  json["diagnostics"] = diagnostics_json(discovery.diagnostics);
+  const auto& request = discovery.setup.request;
+  json["settings"] = {{"validate_from", request.validate_from},
+                      {"bic_threshold", request.bic_threshold},
+                      {"min_gap_shrink", request.min_gap_shrink},
+                      {"min_signature", request.min_signature},
+                      {"starts", request.starts},
+                      {"seed", request.seed}};
+  json["simulations"] = discovery.simulations;
+  json["seconds"] = discovery.seconds;
+  return json.dump(2) + "\n";
+}
+
+std::string discovery_summary(const Discovery& discovery) {
+  std::ostringstream out;
+  const auto& outputs = problem_of(discovery).outputs;
+  out << "discover " << discovery.setup.request.model_file << " on "
+      << discovery.setup.request.data_file << ": " << discovery.simulations << " simulations in "
+      << text(discovery.seconds) << " s\n";
+  out << "  baseline validation RMSE:";
+  for (std::size_t k = 0; k < outputs.size(); ++k)
+    out << " " << outputs[k].channel << " " << text(discovery.base.validation.rmse[k], 4) << " "
+        << outputs[k].unit;
+  out << "\n  " << std::left << std::setw(34) << "effect" << std::setw(12) << "delta BIC"
+      << std::setw(12) << "gap shrink" << std::setw(13) << "signature z"
+      << "significant\n";
+  for (const auto& candidate : discovery.candidates) {
+    out << "  " << std::setw(34) << candidate.name;
+    if (candidate.status != "fitted") {
+      out << candidate.status << ": " << candidate.reason << "\n";
+      continue;
+    }
+    out << std::setw(12) << text(candidate.delta_bic, 4) << std::setw(12)
+        << text(candidate.gap_shrink, 3) << std::setw(13) << text(candidate.signature_z, 3)
+        << (candidate.significant ? "yes" : "no") << "\n";
+  }
+  for (const auto& skipped : discovery.skipped)
+    out << "  " << std::setw(34) << skipped.name << "skipped: " << skipped.reason << "\n";
+  out << "verdict: " << discovery.verdict;
+  if (const auto* verdict = verdict_of(discovery))
+    out << " (validation gap shrinks by " << text(100 * verdict->gap_shrink, 3) << " %)";
+  out << "\n";
+  return out.str();
+}
+
+std::string discovery_report(const Discovery& discovery) {
+  std::ostringstream out;
+  const auto& request = discovery.setup.request;
+  const auto& problem = problem_of(discovery);
+  out << "# tcpmsim discover: " << discovery.verdict << "\n\n";
+  out << "Base model `" << request.model_file << "` against `" << request.data_file
+      << "`: identification [" << text(problem.identification.from, 6) << " s, "
+      << text(problem.identification.to, 6) << " s], validation ["
+      << text(problem.validation.from, 6) << " s, " << text(problem.validation.to, 6) << " s].\n\n";
+  out << "## Where the base model disagrees (validation residual)\n\n";
+  for (std::size_t k = 0; k < discovery.diagnostics.outputs.size(); ++k) {
+    const auto& output = discovery.diagnostics.outputs[k];
+    out << "- **" << output.channel << "**: RMSE " << text(discovery.base.validation.rmse[k], 4)
+        << " " << problem.outputs[k].unit << " (identification "
+        << text(discovery.base.identification.rmse[k], 4)
+        << "); Ljung-Box p = " << text(output.whiteness.p_value, 2)
+        << (output.whiteness.p_value < 0.01 ? " (not white)" : " (white)")
+        << "; drift t = " << text(output.drift.t_statistic, 2) << "; power share by band";
+    for (std::size_t b = 0; b < discovery.diagnostics.bands.size(); ++b)
+      out << (b ? ", " : " ") << text(discovery.diagnostics.bands[b].first, 2) << "-"
+          << text(discovery.diagnostics.bands[b].second, 2) << " Hz "
+          << text(100 * output.band_share[b], 2) << " %";
+    out << "; correlation with";
+    bool first = true;
+    for (const auto& [feature, value] : output.features) {
+      out << (first ? " " : ", ") << feature << " " << text(value, 2);
+      first = false;
+    }
+    out << " (white: |corr| < " << text(discovery.diagnostics.bound, 2) << ")";
+    if (!output.loop.frequency.empty())
+      out << "; loop area against deflection ~ f^" << text(output.loop.exponent, 2);
+    out << ".\n";
+  }
+  out << "\n## Candidates\n\n| effect | delta BIC | gap shrink | signature z (corr) | significant "
+         "| evidence in the base residual |\n|---|---|---|---|---|---|\n";
+  for (const auto& candidate : discovery.candidates) {
+    if (candidate.status != "fitted") {
+      out << "| " << candidate.name << " | failed: " << candidate.reason << " | | | | |\n";
+      continue;
+    }
+    out << "| " << candidate.name << " | " << text(candidate.delta_bic, 4) << " | "
+        << text(100 * candidate.gap_shrink, 3) << " % | " << text(candidate.signature_z, 3) << " ("
+        << text(candidate.signature_match, 2) << ") | " << (candidate.significant ? "yes" : "no")
+        << " | " << candidate.signature_evidence << " |\n";
+  }
+  for (const auto& skipped : discovery.skipped)
+    out << "| " << skipped.name << " | skipped: " << skipped.reason << " | | | | |\n";
+  out << "\nA candidate is significant when it lowers the BIC by more than "
+      << text(request.bic_threshold) << " on the identification window, shrinks the validation "
+      << "RMSE by more than " << text(100 * request.min_gap_shrink) << " %, and the change it "
+      << "makes to the outputs explains the base model's validation residual, which no fit has "
+      << "seen (its signature: the matched-filter z = sum(r d) / |d| in noise units, standard "
+      << "normal for a residual of noise alone, at least " << text(request.min_signature)
+      << "). The base model was refitted on the same window, and again from the best "
+         "candidate's base parameters, so re-tuning them is not counted as an effect.\n\n"
+         "## Verdict\n\n";
+  if (const auto* verdict = verdict_of(discovery)) {
+    out << "**" << verdict->name << "**: " << verdict->description << ". Validation RMSE";
+    for (std::size_t k = 0; k < problem.outputs.size(); ++k)
+      out << " " << problem.outputs[k].channel << " " << text(discovery.base.validation.rmse[k], 4)
+          << " -> " << text(verdict->validation_rmse[k], 4) << " " << problem.outputs[k].unit;
+    out << " (gap shrink " << text(100 * verdict->gap_shrink, 3) << " %). " << verdict->signature
+        << ": " << verdict->signature_evidence << ".\n";
+  } else {
+    out << "**none**: no candidate improves the model significantly.\n";
+  }
+  return out.str();
+}
+
+std::vector<std::string> write_discovery(const std::string& directory, const Discovery& discovery) {
+  std::filesystem::create_directories(directory);
+  const auto in = [&](const char* name) {
+    return (std::filesystem::path(directory) / name).string();
+  };
+  std::vector<std::string> written;
+  const auto put = [&](const char* name, const std::string& content) {
+    const std::string path = in(name);
+    std::ofstream file(path);
+    file << content;
+    if (!file) throw std::runtime_error("cannot write " + path);
+    written.push_back(path);
+  };
+  const std::string& data = discovery.setup.request.data_file;
+  put("baseline.yaml",
+      fitted_scenario_yaml(spec_for_yaml(discovery.setup.base, data), discovery.base));
+  const CandidateOutcome* verdict = verdict_of(discovery);
+  if (verdict)
+    put("augmented.yaml",
+        fitted_scenario_yaml(spec_for_yaml(verdict->spec, data), verdict->result));
+
+  const FitProblem& problem = problem_of(discovery);
+  const TimeWindow whole{problem.identification.from, problem.validation.to};
+  std::vector<double> base_values, augmented_values;
+  for (const auto& estimate : discovery.base.estimates) base_values.push_back(estimate.value);
+  const auto measured = measured_outputs(problem, whole);
+  const auto baseline = simulate_outputs(problem, base_values, whole);
+  auto augmented = baseline;
+  if (verdict) {
+    for (const auto& estimate : verdict->result.estimates)
+      augmented_values.push_back(estimate.value);
+    augmented = simulate_outputs(verdict->spec.problem, augmented_values, whole);
+  }
+  const auto [first, last] = samples_in(*problem.data, whole);
+  const auto& time = problem.data->time();
+  const std::string traces = in("traces.h5");
+  Hdf5Writer writer(traces);
+  writer.write("/time",
+               std::vector<double>(time.begin() + static_cast<long>(first),
+                                   time.begin() + static_cast<long>(last)),
+               "s");
+  for (std::size_t k = 0; k < problem.outputs.size(); ++k) {
+    const auto& output = problem.outputs[k];
+    std::vector<double> before(measured[k].size()), after(measured[k].size());
+    for (std::size_t i = 0; i < measured[k].size(); ++i) {
+      before[i] = measured[k][i] - baseline[k][i];
+      after[i] = measured[k][i] - augmented[k][i];
+    }
+    writer.write("/measured/" + output.channel, measured[k], output.unit);
+    writer.write("/baseline/" + output.channel, baseline[k], output.unit);
+    writer.write("/augmented/" + output.channel, augmented[k], output.unit);
+    writer.write("/residual/baseline/" + output.channel, before, output.unit);
+    writer.write("/residual/augmented/" + output.channel, after, output.unit);
+    const auto& diagnosed = discovery.diagnostics.outputs[k];
+    const std::string group = "/diagnostics/" + output.channel;
+    writer.write(group + "/loop_frequency", diagnosed.loop.frequency, "Hz");
+    writer.write(group + "/loop_quadrature", diagnosed.loop.quadrature, output.unit + "/m");
+    for (const auto& [input, cross] : diagnosed.inputs)
+      writer.write(group + "/cross_correlation/" + input, cross.values, "1");
+    std::vector<std::string> names;
+    std::vector<double> values;
+    for (const auto& [feature, value] : diagnosed.features) {
+      names.push_back(feature);
+      values.push_back(value);
+    }
+    writer.write_strings(group + "/feature_names", names);
+    writer.write(group + "/feature_correlation", values, "1");
+  }
+  writer.write("/identification_window",
+               std::vector<double>{problem.identification.from, problem.identification.to}, "s");
+  writer.write("/validation_window",
+               std::vector<double>{problem.validation.from, problem.validation.to}, "s");
+  writer.attribute("/", "verdict", discovery.verdict);
+  writer.attribute("/", "augmented_effect", verdict ? verdict->name : "none");
+  writer.commit();
+  written.push_back(traces);
+  put("discovery.json", discovery_json(discovery));
+  put("report.md", discovery_report(discovery));
+  return written;
+}
+
+}  // namespace tcpmsim::fit

@@ -1,0 +1,29 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "identification/discovery.h"
+
+namespace tcpmsim::fit {
+
+// discovery.json: {"verdict": name|"none", "ranking": [{"effect", "delta_bic",
+// "validation_rmse", "gap_shrink", "signature_match", "significant", "status"}...],
+// "baseline": {"validation_rmse": {channel: ...}, "bic", "parameters"}, "augmented":
+// {"effect", "validation_rmse", "parameters"}, "gap_shrink": 1 - rmse_aug / rmse_base,
+// "diagnostics": {...}, "skipped": [...], "settings": {...}}.
+std::string discovery_json(const Discovery& discovery);
+
+// A short human-readable report of the evidence (Markdown).
+std::string discovery_report(const Discovery& discovery);
+
+// What `tcpmsim discover` prints.
+std::string discovery_summary(const Discovery& discovery);
+
+// Writes into `directory`: discovery.json, report.md, baseline.yaml (the base model as refitted),
+// augmented.yaml (with the verdict's effect, when there is one) and traces.h5 (/time,
+// /measured, /baseline, /augmented and their residuals per channel, the windows, and the
+// diagnostics of the base model's validation residual). Returns the paths written.
+std::vector<std::string> write_discovery(const std::string& directory, const Discovery& discovery);
+
+}  // namespace tcpmsim::fit
