@@ -152,6 +152,16 @@ TEST_CASE("Errors in command-line overrides point at the --set") {
         "'k3' (did you mean 'k1'?)");
   CHECK(error_of(kValid, {"muscle.mechanics.k1"}) ==
         "command line (--set muscle.mechanics.k1): error: expected --set key.path=value");
+  // A key path with an empty name: only dots, a leading, trailing or doubled dot (issue 13: a
+  // path of dots crashed).
+  for (const std::string key : {".", "...", ".muscle", "muscle.", "muscle..mechanics.k1", "[0]"}) {
+    INFO(key);
+    CHECK(error_of(kValid, {key + "=3"}) ==
+          "command line (--set " + key +
+              "=3): error: expected --set key.path=value, the key path names joined by '.' (e.g. "
+              "muscle.mechanics.k1); '" +
+              key + "' has an empty name");
+  }
 }
 
 TEST_CASE("A deflection that reaches the inductance law's singularity is rejected") {

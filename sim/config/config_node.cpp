@@ -222,8 +222,17 @@ std::shared_ptr<ConfigDocument> parse_document(const std::string& text, const st
     if (equals == std::string::npos || equals == 0 || equals + 1 == assignment.size()) {
       throw ConfigError(origin, "", "expected --set key.path=value");
     }
-    const std::string path =
-        expand_instance_path(document->root, trim(assignment.substr(0, equals)), instance_sections);
+    const std::string key = trim(assignment.substr(0, equals));
+    // Names joined by single dots, each possibly indexed ("muscle.effects[0].stiffness").
+    bool empty_name = key.empty() || key.front() == '.' || key.back() == '.' ||
+                      key.find("..") != std::string::npos || key.front() == '[';
+    if (empty_name) {
+      throw ConfigError(origin, "",
+                        "expected --set key.path=value, the key path names joined by '.' (e.g. "
+                        "muscle.mechanics.k1); '" +
+                            key + "' has an empty name");
+    }
+    const std::string path = expand_instance_path(document->root, key, instance_sections);
     YAML::Node value;
     try {
       value = YAML::Load(assignment.substr(equals + 1));
