@@ -201,3 +201,26 @@ TEST_CASE("A missing file is named") {
   CHECK_THROWS_WITH(ConfigNode::load_file("/nonexistent/scenario.yaml", {}, shared_units()),
                     "/nonexistent/scenario.yaml: error: cannot open the file for reading");
 }
+
+TEST_CASE("YAML aliases that expand without bound are refused at their place (issue 13)") {
+  // The "billion laughs": seven levels of ten aliases each would be 10^7 values.
+  std::string laughs = "a0: &a0 [lol, lol, lol, lol, lol, lol, lol, lol, lol, lol]\n";
+  for (int level = 1; level < 7; ++level) {
+    const std::string name = std::string("a").append(std::to_string(level));
+    const std::string below = std::string("*a").append(std::to_string(level - 1));
+    laughs += name + ": &" + name + " [";
+    for (int k = 0; k < 10; ++k) {
+      if (k > 0) laughs += ", ";
+      laughs += below;
+    }
+    laughs += "]\n";
+  }
+  CHECK_THAT(error_of(kValid + laughs),
+             Catch::StartsWith("test.yaml:") &&
+                 Catch::Contains("error: the document expands to more than 1000000 values (are "
+                                 "YAML aliases nested in one another, or referring to "
+                                 "themselves?); a configuration needs neither"));
+  // A key that is itself a sequence is no name.
+  CHECK_THAT(error_of(kValid + "? [a, b]\n: 3\n"),
+             Catch::Contains("error: expected a key name, got a sequence"));
+}

@@ -99,21 +99,54 @@ std::string trim(std::string_view text) {
   return std::string(text.substr(first, last - first + 1));
 }
 
-void reject_duplicate_keys(const YAML::Node& node, const std::string& file) {
-  if (node.IsMap()) {
-    std::set<std::string> seen;
-    for (const auto& entry : node) {
-      const std::string key = entry.first.as<std::string>();
-      if (!seen.insert(key).second) {
-        const auto mark = entry.first.Mark();
-        throw ConfigError({file, mark.line + 1, mark.column + 1, {}}, key,
-                          "duplicate key '" + key + "'");
-      }
-      reject_duplicate_keys(entry.second, file);
-    }
-  } else if (node.IsSequence()) {
-    for (const auto& element : node) reject_duplicate_keys(element, file);
+// Bounds on what a configuration may expand to: YAML aliases can refer to themselves (a cycle)
+// or nest to expand exponentially (the "billion laughs"), which a recursive walk would follow
+// until the stack or the memory gives out.
+constexpr int kMaxDepth = 64;
+constexpr long kMaxNodes = 1000000;
+
+struct DocumentWalk {
+  const std::string& file;
+  long nodes = 0;
+
+  [[noreturn]] void refuse(const YAML::Node& node, const std::string& what) const {
+    const auto mark = node.Mark();
+    throw ConfigError({file, mark.line + 1, mark.column + 1, {}}, "",
+                      what +
+                          " (are YAML aliases nested in one another, or referring to "
+                          "themselves?); a configuration needs neither");
   }
+
+  void visit(const YAML::Node& node, int depth) {
+    if (depth > kMaxDepth)
+      refuse(node, "the document nests deeper than " + std::to_string(kMaxDepth) + " levels");
+    if (++nodes > kMaxNodes)
+      refuse(node, "the document expands to more than " + std::to_string(kMaxNodes) + " values");
+    if (node.IsMap()) {
+      std::set<std::string> seen;
+      for (const auto& entry : node) {
+        if (!entry.first.IsScalar()) {
+          const auto mark = entry.first.Mark();
+          throw ConfigError({file, mark.line + 1, mark.column + 1, {}}, "",
+                            "expected a key name, got a " +
+                                std::string(entry.first.IsMap() ? "mapping" : "sequence"));
+        }
+        const std::string key = entry.first.as<std::string>();
+        if (!seen.insert(key).second) {
+          const auto mark = entry.first.Mark();
+          throw ConfigError({file, mark.line + 1, mark.column + 1, {}}, key,
+                            "duplicate key '" + key + "'");
+        }
+        visit(entry.second, depth + 1);
+      }
+    } else if (node.IsSequence()) {
+      for (const auto& element : node) visit(element, depth + 1);
+    }
+  }
+};
+
+void reject_duplicate_keys(const YAML::Node& node, const std::string& file) {
+  DocumentWalk{file}.visit(node, 0);
 }
 
 // Splits "a.b[2].c" into {"a", "b", "[2]", "c"}.
