@@ -11,6 +11,7 @@
 #include "controllers/pid_controller.h"
 #include "controllers/self_sensing_estimator.h"
 #include "kinds/standard_kinds.h"
+#include "sim/config/config_error.h"
 #include "sim/io/hdf5_writer.h"
 #include "sim/parallel_runs.h"
 
@@ -30,7 +31,10 @@ constexpr const char* kDeflectionControl =
 template <typename T>
 const T& required(const Scenario& scenario, const std::string& what) {
   if (const auto* found = scenario.system->find<T>()) return *found;
-  throw std::invalid_argument("the scenario has no " + what);
+  throw UsageError(
+      "control-tasks takes the chapter-7 self-sensing control scenarios "
+      "(configs/ch7_control/*.yaml, configs/pair/*.yaml); " +
+      scenario.source + " has no " + what);
 }
 
 // The estimator's calibration offsets (7.3.4), as run parameters.

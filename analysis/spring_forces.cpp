@@ -9,6 +9,7 @@
 #include "kinds/standard_kinds.h"
 #include "models/coil_spring_chain.h"
 #include "models/coil_spring_inductance.h"
+#include "sim/config/config_error.h"
 #include "sim/io/hdf5_writer.h"
 #include "sim/parallel_runs.h"
 #include "sim/run.h"
@@ -82,7 +83,10 @@ PreparedRun prepare(const std::string& config, double window,
   const auto* chain = run.scenario.system->find<const CoilSpringChain>();
   const auto* sensor = run.scenario.system->find<const CoilSpringInductance>();
   if (!chain || !sensor) {
-    throw std::invalid_argument(config + ": not a coil-spring scenario with an inductance sensor");
+    throw UsageError(
+        "spring-forces takes coil-spring scenarios with an inductance sensor "
+        "(configs/ch4/*.yaml); " +
+        config + " is not one");
   }
   run.nominal_force = chain->defaults().stiffness * (sensor->defaults().longest_length -
                                                      chain->defaults().rest_length);  // (4.14)

@@ -248,13 +248,7 @@ int discover(const Options& options) {
   tcpmsim::fit::DiscoverRequest request = options.discover;
   request.threads = options.fit_jobs;
   request.overrides = options.overrides;
-  tcpmsim::fit::DiscoverSetup setup;
-  try {
-    setup = tcpmsim::fit::setup_discovery(request, units);
-  } catch (const std::invalid_argument& error) {
-    std::cerr << "tcpmsim discover: " << error.what() << "\n";
-    return kUsageError;
-  }
+  const tcpmsim::fit::DiscoverSetup setup = tcpmsim::fit::setup_discovery(request, units);
   const std::string& directory = options.fit_directory;
   std::error_code error;
   std::filesystem::create_directories(directory, error);
@@ -330,6 +324,9 @@ int report_errors(int (*command)(const Options&), const Options& options) {
   } catch (const tcpmsim::ParameterError& error) {
     std::cerr << "tcpmsim: error: " << error.what() << "\n";
     return kConfigError;
+  } catch (const tcpmsim::UsageError& error) {
+    std::cerr << "tcpmsim: " << error.what() << "\n";
+    return kUsageError;
   } catch (const std::runtime_error& error) {
     std::cerr << "tcpmsim: " << error.what() << "\n";
     return kOutputError;

@@ -29,4 +29,12 @@ class ConfigError : public std::runtime_error {
   std::string problem_;
 };
 
+// A command asked to do what it does not do with this input: an analysis given a scenario of
+// another kind, a choice on the command line that the input cannot serve. The message names
+// the input and says what the command takes; the program exits as for a usage error.
+class UsageError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
 }  // namespace tcpmsim

@@ -105,6 +105,11 @@ expect 4 "an analysis window longer than the record is refused, not analysed sho
   spring-forces "$source_dir/configs/ch4/st_heel_strike.yaml" --window 1 -o "$work/window.h5"
 contains "$work/err" "the analysis window (1 s) must lie within the recorded" "the window error says why"
 expect 2 "spring-forces with a missing file is a usage error" -- "$tcpmsim" spring-forces "$work/none.yaml"
+# An analysis given a scenario of another kind is a usage error that names the file and what the
+# command takes (issue 13: it was an internal error).
+expect 2 "spring-forces on a muscle scenario is a usage error" -- "$tcpmsim" spring-forces "$config" -o "$work/sf.h5"
+contains "$work/err" "spring-forces takes coil-spring scenarios with an inductance sensor (configs/ch4/*.yaml); $config is not one" "the wrong-kind error names the file and the kind"
+[[ ! -e $work/sf.h5 ]] && echo "ok: nothing written for the wrong kind" || { echo "FAIL: output for the wrong kind"; failures=$((failures + 1)); }
 expect 2 "coil-fit with a missing data directory is a usage error" -- "$tcpmsim" coil-fit \
   "$source_dir/configs/springs/s1.yaml" --data "$work/none"
 
@@ -134,7 +139,7 @@ expect 0 "the fitted scenario runs as it is" -- "$tcpmsim" run "$work/fit/fitted
 expect 2 "discover with an input the model does not replay is a usage error" -- "$tcpmsim" discover \
   --model "$discover/ch7_base.yaml" --data "$work/measured.csv" --inputs power,force --outputs force \
   --validate-from 400 --out "$work/discover"
-contains "$work/err" "tcpmsim discover: --inputs: the model" "the discover error names the option"
+contains "$work/err" "tcpmsim: --inputs: the model" "the discover error names the option"
 contains "$work/err" "replays no channel 'force'" "the discover error says what is missing"
 expect 2 "discover with an unknown effect is a usage error" -- "$tcpmsim" discover \
   --model "$discover/ch7_base.yaml" --data "$work/measured.csv" --inputs power,deflection \
