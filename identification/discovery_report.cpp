@@ -108,6 +108,7 @@ std::string discovery_json(const Discovery& discovery) {
       entry["iterations"] = candidate.result.iterations;
       entry["gradient"] = candidate.result.gradient;
       entry["seconds"] = candidate.seconds;
+      entry["termination"] = candidate.result.termination;
     } else {
       entry["reason"] = candidate.reason;
     }

@@ -10,6 +10,7 @@
 
 #include "identification/effect_catalogue.h"
 #include "kinds/standard_kinds.h"
+#include "sim/config/config_error.h"
 #include "sim/value_check.h"
 
 namespace tcpmsim::fit {
@@ -40,15 +41,14 @@ std::vector<std::string> replayed_channels(const std::string& resolved_yaml) {
 }
 
 void check_inputs(const DiscoverRequest& request, const Scenario& model, const MeasuredData& data) {
-  if (request.inputs.empty()) throw std::invalid_argument("--inputs: name at least one channel");
+  if (request.inputs.empty()) throw UsageError("--inputs: name at least one channel");
   const auto replayed = replayed_channels(model.resolved_yaml);
   for (const auto& input : request.inputs) {
-    if (!data.find(input)) throw std::invalid_argument("--inputs: " + data.missing_channel(input));
+    if (!data.find(input)) throw UsageError("--inputs: " + data.missing_channel(input));
     if (std::find(replayed.begin(), replayed.end(), input) == replayed.end()) {
-      throw std::invalid_argument("--inputs: the model " + request.model_file +
-                                  " replays no channel '" + input +
-                                  "' (its data signals replay: " + joined(replayed) +
-                                  "); give it a signal {type: data, channel: " + input + "}");
+      throw UsageError("--inputs: the model " + request.model_file + " replays no channel '" +
+                       input + "' (its data signals replay: " + joined(replayed) +
+                       "); give it a signal {type: data, channel: " + input + "}");
     }
   }
 }
@@ -57,7 +57,7 @@ void check_inputs(const DiscoverRequest& request, const Scenario& model, const M
 // one named, the bench's instrument for it: the drive's, else the load's, else the muscle's.
 std::vector<FitOutput> read_outputs(const DiscoverRequest& request, const Scenario& model,
                                     const MeasuredData& data, const UnitSystem& units) {
-  if (request.outputs.empty()) throw std::invalid_argument("--outputs: name at least one channel");
+  if (request.outputs.empty()) throw UsageError("--outputs: name at least one channel");
   std::vector<FitOutput> outputs;
   const System& system = *model.system;
   const std::string muscle = only_muscle(system);
@@ -66,12 +66,12 @@ std::vector<FitOutput> read_outputs(const DiscoverRequest& request, const Scenar
     const auto equals = entry.find('=');
     output.channel = entry.substr(0, equals);
     const MeasuredChannel* channel = data.find(output.channel);
-    if (!channel) throw std::invalid_argument("--outputs: " + data.missing_channel(output.channel));
+    if (!channel) throw UsageError("--outputs: " + data.missing_channel(output.channel));
     if (equals != std::string::npos) {
       output.output = entry.substr(equals + 1);
       if (system.signal_index(output.output) < 0)
-        throw std::invalid_argument("--outputs: the model has no output '" + output.output +
-                                    "' (outputs are named group.name, as in its record)");
+        throw UsageError("--outputs: the model has no output '" + output.output +
+                         "' (outputs are named group.name, as in its record)");
     } else {
       for (const std::string& instrument : std::vector<std::string>{"drive", "load", muscle}) {
         if (system.signal_index(instrument + "." + output.channel) >= 0) {
@@ -80,20 +80,19 @@ std::vector<FitOutput> read_outputs(const DiscoverRequest& request, const Scenar
         }
       }
       if (output.output.empty())
-        throw std::invalid_argument("--outputs: the model publishes no '" + output.channel +
-                                    "' of its drive, load or muscle; name the output, as " +
-                                    output.channel + "=group.name");
+        throw UsageError("--outputs: the model publishes no '" + output.channel +
+                         "' of its drive, load or muscle; name the output, as " + output.channel +
+                         "=group.name");
     }
     output.unit =
         system.channels()[static_cast<std::size_t>(system.signal_index(output.output))].unit;
     if (!units.convertible(channel->unit, output.unit) ||
         units.convert(1.0, channel->unit, output.unit) != 1.0)
-      throw std::invalid_argument("--outputs: channel '" + output.channel + "' is in " +
-                                  channel->unit + " and output '" + output.output + "' in " +
-                                  output.unit);
+      throw UsageError("--outputs: channel '" + output.channel + "' is in " + channel->unit +
+                       " and output '" + output.output + "' in " + output.unit);
     for (const auto& earlier : outputs) {
       if (earlier.channel == output.channel)
-        throw std::invalid_argument("--outputs: '" + output.channel + "' is named twice");
+        throw UsageError("--outputs: '" + output.channel + "' is named twice");
     }
     outputs.push_back(output);
   }
@@ -139,29 +138,28 @@ std::vector<FitParameter> read_parameters(const DiscoverRequest& request, const 
   const std::vector<std::string> paths =
       request.parameters.empty() ? default_parameters(*model.system, outputs) : request.parameters;
   if (paths.empty())
-    throw std::invalid_argument(
+    throw UsageError(
         "--parameters: the model has none of the default parameters; "
         "name those to fit");
   const Context context = model.make_context();
   std::vector<FitParameter> parameters;
   for (const auto& path : paths) {
     const auto index = model.system->parameter_index(path);
-    if (!index)
-      throw std::invalid_argument("--parameters: the model has no parameter '" + path + "'");
+    if (!index) throw UsageError("--parameters: the model has no parameter '" + path + "'");
     const auto& info = model.system->parameters()[static_cast<std::size_t>(*index)];
     if (!info.derived_from.empty())
-      throw std::invalid_argument("--parameters: '" + path + "' is derived (" + info.derived_from +
-                                  "); fit what it is derived from");
+      throw UsageError("--parameters: '" + path + "' is derived (" + info.derived_from +
+                       "); fit what it is derived from");
     const double value = context.parameter(path);
     if (value == 0.0)
-      throw std::invalid_argument("--parameters: '" + path +
-                                  "' is 0 in the model; give it a starting value (--set)");
+      throw UsageError("--parameters: '" + path +
+                       "' is 0 in the model; give it a starting value (--set)");
     FitParameter parameter{path, info.declaration.unit, std::min(value / 5, value * 5),
                            std::max(value / 5, value * 5)};
     for (const double bound : {parameter.lower, parameter.upper}) {
       if (const std::string problem = parameter_problem(info.declaration, bound); !problem.empty())
-        throw std::invalid_argument("--parameters: '" + path +
-                                    "' at a fifth or five times its value: " + problem);
+        throw UsageError("--parameters: '" + path +
+                         "' at a fifth or five times its value: " + problem);
     }
     parameters.push_back(parameter);
   }
@@ -174,9 +172,9 @@ std::pair<TimeWindow, TimeWindow> windows(const MeasuredData& data, double from)
   const auto split = std::lower_bound(time.begin(), time.end(), from);
   const auto before = split - time.begin(), after = time.end() - split;
   if (before < 16 || after < 16)
-    throw std::invalid_argument("--validate-from " + seconds_text(from) +
-                                ": both windows need 16 samples or more; the data run from " +
-                                seconds_text(time.front()) + " to " + seconds_text(time.back()));
+    throw UsageError("--validate-from " + seconds_text(from) +
+                     ": both windows need 16 samples or more; the data run from " +
+                     seconds_text(time.front()) + " to " + seconds_text(time.back()));
   return {{time.front(), *(split - 1)}, {*split, time.back()}};
 }
 
@@ -268,8 +266,7 @@ DiscoverSetup setup_discovery(const DiscoverRequest& request,
   for (const auto& effect : request.effects) {
     const auto& names = effect_names();
     if (std::find(names.begin(), names.end(), effect) == names.end())
-      throw std::invalid_argument("--effects: no effect '" + effect +
-                                  "'; the catalogue: " + joined(names));
+      throw UsageError("--effects: no effect '" + effect + "'; the catalogue: " + joined(names));
   }
   DiscoverSetup setup;
   setup.request = request;
@@ -286,7 +283,7 @@ DiscoverSetup setup_discovery(const DiscoverRequest& request,
   if (const std::string problem =
           output_rate_problem(*model, raw, identification.from, "--set ", "");
       !problem.empty())
-    throw std::invalid_argument("--model: " + problem);
+    throw UsageError("--model: " + problem);
 
   FitSpec& spec = setup.base;
   spec.file = "discover";

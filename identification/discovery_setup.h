@@ -40,7 +40,7 @@ struct DiscoverSetup {
 // Reads and checks everything before any fit: the model and data files, that every input is
 // measured and replayed by the model, every output measured and published by the model, the
 // base parameters and the validation split. Throws ConfigError (the model, --set) or
-// std::invalid_argument (a command-line choice) with the reason.
+// UsageError (a command-line choice) with the reason.
 DiscoverSetup setup_discovery(const DiscoverRequest& request,
                               std::shared_ptr<const UnitSystem> units);
 

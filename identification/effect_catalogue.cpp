@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "sim/config/config_error.h"
 #include "sim/value_check.h"
 
 namespace tcpmsim::fit {
@@ -151,10 +152,10 @@ std::string only_muscle(const System& system) {
   for (const auto& component : system.components()) {
     if (component->kind() != "sls_mechanics") continue;
     if (!found.empty())
-      throw std::invalid_argument("discover needs a model of one muscle; this one has several");
+      throw UsageError("discover needs a model of one muscle; this one has several");
     found = component->group();
   }
-  if (found.empty()) throw std::invalid_argument("discover needs a model with a muscle");
+  if (found.empty()) throw UsageError("discover needs a model with a muscle");
   return found;
 }
 
@@ -183,7 +184,7 @@ Candidates effect_candidates(const Scenario& scenario, const Context& fitted,
                        "a second viscoelastic branch with a long time constant (warm-up)",
                        "drift; low-frequency residual power")
           .attach("maxwell_branch")
-          .free("stiffness", 0.2 * k2, 0.005 * k2, 3.0 * k2, "N/m")
+          .free("stiffness", 0.02 * k2, 0.005 * k2, 3.0 * k2, "N/m")
           .free("time_constant", 200.0, 30.0, 3000.0, "s")
           .build());
   result.candidates.push_back(
@@ -192,7 +193,7 @@ Candidates effect_candidates(const Scenario& scenario, const Context& fitted,
           "residual against the direction of the last motion; loop area flat in frequency")
           .attach("hysteresis")
           .free("stiffness", k1, 0.05 * k1, 50.0 * k1, "N/m")
-          .free("force", 2e-3, 5e-5, 5e-2, "N")
+          .free("force", 2e-4, 5e-5, 5e-2, "N")
           .build());
   if (!base.temperature || !(c > 0.0)) {
     for (const char* name :
@@ -207,15 +208,17 @@ Candidates effect_candidates(const Scenario& scenario, const Context& fitted,
                          "heat loss growing faster than linearly with the temperature rise",
                          "residual against temperature; against power at steady heating")
             .attach("free_convection")
-            .free("conductance", 0.2 * ha, 0.001 * ha, 3.0 * ha, "W/K")
+            .free("conductance", 0.01 * ha, 0.001 * ha, 3.0 * ha, "W/K")
             .fixed("reference_difference", 50.0, "K")
             .build());
     result.candidates.push_back(
         CandidateBuilder(base, "thermal_lag", "heater wire and polymer as two thermal nodes",
                          "residual cross-correlated with power at short lags")
             .attach("thermal_lag")
-            .free("heat_capacity", 0.05 * c, 0.001 * c, c, "J/K")
-            .free("conductance", 10.0 * ha, 0.5 * ha, 1000.0 * ha, "W/K")
+            // Starting as a wire that follows at once (tau_w = C_w / G_w of 1e-4 C / hA), so that
+            // the augmented model starts where the base model ended.
+            .free("heat_capacity", 0.01 * c, 0.001 * c, c, "J/K")
+            .free("conductance", 100.0 * ha, 0.5 * ha, 1000.0 * ha, "W/K")
             .build());
   }
   if (base.deflection) {
@@ -226,7 +229,7 @@ Candidates effect_candidates(const Scenario& scenario, const Context& fitted,
                          "stiffness that depends on deflection (coil contact, preload knee)",
                          "residual against deflection")
             .attach("nonlinear_stiffness")
-            .free("stiffness", 0.3 * k1, -0.9 * k1, 5.0 * k1, "N/m")
+            .free("stiffness", 0.02 * k1, -0.9 * k1, 5.0 * k1, "N/m")
             .free("knee_deflection", 0.5 * (low + high), low, high, "m")
             .free("knee_width", 0.1 * range, 0.01 * range, 0.5 * range, "m")
             .build());
@@ -267,7 +270,7 @@ Candidates effect_candidates(const Scenario& scenario, const Context& fitted,
                                                "an SLS branch, for base models that lack one",
                                                "residual against dx/dt")
                                   .attach("maxwell_branch")
-                                  .free("stiffness", 0.5 * k2, 0.005 * k2, 5.0 * k2, "N/m")
+                                  .free("stiffness", 0.02 * k2, 0.005 * k2, 5.0 * k2, "N/m")
                                   .free("time_constant", 5.0, 0.05, 30.0, "s")
                                   .build());
   return result;

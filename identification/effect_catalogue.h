@@ -12,7 +12,8 @@ namespace tcpmsim::fit {
 
 // A candidate of `tcpmsim discover`: a named physical effect the base model lacks, as the
 // scenario overrides that attach it to the muscle (at starting values scaled by the base
-// model as fitted) and the parameters a refit frees besides the base model's, with bounds.
+// model as fitted, small enough that the augmented model starts close to the base model's fit)
+// and the parameters a refit frees besides the base model's, with bounds.
 struct EffectCandidate {
   std::string name;                      // "slow_relaxation"
   std::string description;               // what it models

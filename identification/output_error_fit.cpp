@@ -250,9 +250,16 @@ std::vector<std::vector<double>> starting_points(const FitProblem& problem,
       continue;
     }
     RandomStream stream(settings.seed, "fit start " + parameter.path);
+    // A range of more than a decade of a positive parameter is drawn log-uniformly, so that a
+    // time scale is tried at every order of magnitude, not mostly near its upper bound.
+    const bool decades = parameter.lower > 0.0 && parameter.upper > 10.0 * parameter.lower;
     const auto column =
-        sweep::latin_hypercube_values(0.0, 1.0, settings.starts, sweep::Spacing::linear, stream);
-    for (std::size_t s = 0; s < column.size(); ++s) points[s + 1][j] = column[s];
+        decades ? sweep::latin_hypercube_values(parameter.lower, parameter.upper, settings.starts,
+                                                sweep::Spacing::logarithmic, stream)
+                : sweep::latin_hypercube_values(parameter.lower, parameter.upper, settings.starts,
+                                                sweep::Spacing::linear, stream);
+    for (std::size_t s = 0; s < column.size(); ++s)
+      points[s + 1][j] = (column[s] - parameter.lower) / (parameter.upper - parameter.lower);
   }
   return points;
 }

@@ -161,24 +161,37 @@ def one_case(arguments, inputs, effect, noise_mn, seed):
 
 
 def table(results):
-    lines = ["| hidden effect | cases | named | recovery | median gap shrink | other verdicts |",
-             "|---|---|---|---|---|---|"]
-    effects = list(dict.fromkeys(r["effect"] for r in results))
-    for effect in effects:
-        cases = [r for r in results if r["effect"] == effect]
+    """Per hidden effect: the verdicts that name it (for none: that name nothing) and the median
+    validation gap shrink, overall and per noise level."""
+    noises = sorted({r["noise_mN"] for r in results if "noise_mN" in r})
+    header = "| hidden effect | forms | recovery | median gap shrink | " + " | ".join(
+        f"{n} mN: named, shrink" for n in noises) + " | other verdicts |"
+    lines = [header, "|" + "---|" * (5 + len(noises))]
+
+    def summary(cases, effect):
         done = [r for r in cases if "verdict" in r]
+        named = [r for r in done if r["verdict"] == effect]
+        shrinks = [r["gap_shrink"] for r in named]
+        shrink = f"{100 * statistics.median(shrinks):.0f} %" if shrinks and effect != "none" else "-"
+        return done, named, shrink
+
+    for effect in dict.fromkeys(r["effect"] for r in results):
+        cases = [r for r in results if r["effect"] == effect]
+        done, named, shrink = summary(cases, effect)
         if effect == "none":
-            named = [r for r in done if r["verdict"] == "none"]
             rate = f"false alarms {len(done) - len(named)}/{len(done)}"
         else:
-            named = [r for r in done if r["verdict"] == effect]
-            rate = f"{100 * len(named) / max(1, len(done)):.0f} %"
-        shrinks = [r["gap_shrink"] for r in named if effect != "none"]
-        median = f"{100 * statistics.median(shrinks):.0f} %" if shrinks else "-"
-        others = sorted({r["verdict"] for r in done if r["verdict"] != (effect if effect != "none" else "none")})
+            rate = f"{len(named)}/{len(done)} ({100 * len(named) / max(1, len(done)):.0f} %)"
+        columns = []
+        for noise in noises:
+            at = [r for r in cases if r.get("noise_mN") == noise]
+            at_done, at_named, at_shrink = summary(at, effect)
+            columns.append(f"{len(at_named)}/{len(at_done)}, {at_shrink}")
+        forms = "; ".join(sorted({r["form"] for r in cases}))
+        others = sorted({r["verdict"] for r in done if r["verdict"] != effect})
         failed = len(cases) - len(done)
-        lines.append(f"| {effect} | {len(cases)} | {len(named)} | {rate} | {median} | "
-                     f"{', '.join(others) or '-'}{f' ({failed} failed)' if failed else ''} |")
+        lines.append(f"| {effect} | {forms} | {rate} | {shrink} | " + " | ".join(columns) +
+                     f" | {', '.join(others) or '-'}{f' ({failed} failed)' if failed else ''} |")
     return "\n".join(lines)
 
 
@@ -195,6 +208,8 @@ def main():
     parser.add_argument("--cases-at-once", type=int, default=1, help="discover runs in parallel")
     parser.add_argument("--threads", type=int, default=2, help="threads of each discover run")
     parser.add_argument("--plots", action="store_true", help="draw each case's pictures")
+    parser.add_argument("--check", action="store_true",
+                        help="exit 1 unless every case's verdict is its hidden effect (none: none)")
     parser.add_argument("--no-inductance", dest="inductance", action="store_false",
                         help="compare the force only (no L* output, no inductance candidate)")
     arguments = parser.parse_args()
@@ -220,6 +235,9 @@ def main():
     print(text)
     if any("error" in r for r in results):
         sys.exit("discover_matrix: some cases failed (see their log.txt)")
+    missed = [r["case"] for r in results if r["verdict"] != r["effect"]]
+    if arguments.check and missed:
+        sys.exit("discover_matrix: wrong verdicts: " + ", ".join(missed))
 
 
 if __name__ == "__main__":

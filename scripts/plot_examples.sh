@@ -7,6 +7,8 @@
 #   bode     the force sweep task's Bode plot (control-tasks)  bode_force.png
 #   sweep    the CI sweep's bandwidth over hA x C and tau against C   sweep_bandwidth.png, sweep_time_constant.png
 #   bundle   the 19-muscle bundle's temperature spread      bundle_temperature_spread.png
+#   discovery  discover on data with a hidden hysteresis: residuals before and after, and the
+#            diagnostic                                     discover_residuals.png, discover_diagnostic.png
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-docs/images}
@@ -28,3 +30,14 @@ $plot sweep "$work/sweep.h5" --x muscle.thermal.heat_capacity --metric time_cons
   -o "$out/sweep_time_constant.png"
 build/tcpmsim run configs/bundle/hexagonal_parallel.yaml -q -o "$work/bundle.h5"
 $plot bundle "$work/bundle.h5" --bundle bundle --time 149 -o "$out/bundle_temperature_spread.png"
+build/tcpmsim run configs/discover/ch7_protocol.yaml -q -o "$work/protocol.h5"
+build/tcpmsim measure configs/discover/ch7_base.yaml --set "measurement.file=$work/protocol.h5" \
+  --set 'muscle.effects=[{type: hysteresis, stiffness: 50 N/m, force: 6 mN}]' \
+  --bench configs/discover/ch7_bench.yaml -q -o "$work/hidden_hysteresis.csv"
+build/tcpmsim discover --model configs/discover/ch7_base.yaml --data "$work/hidden_hysteresis.csv" \
+  --inputs power,deflection --outputs force --validate-from 400 \
+  --effects hysteresis,slow_relaxation,viscoelastic_relaxation --jobs 2 --no-plots -q \
+  --out "$work/discover"
+$plot discovery "$work/discover" -o "$work/discover"
+cp "$work/discover/residuals.png" "$out/discover_residuals.png"
+cp "$work/discover/diagnostic.png" "$out/discover_diagnostic.png"
