@@ -33,18 +33,6 @@ bool is_bench_file(const std::filesystem::path& path) {
   return YAML::LoadFile(path.string())["channels"].IsDefined();
 }
 
-// The chapter-7 protocol's record: the measurement that model scenarios (whose data signals
-// replay "the measurement") and fit files are run with here.
-std::string protocol_record() {
-  const auto path = std::filesystem::path(process_directory("configs")) / "ch7_protocol.h5";
-  if (!std::filesystem::exists(path)) {
-    const Scenario protocol =
-        load_scenario(source_path("configs/discover/ch7_protocol.yaml"), {}, shared_units());
-    REQUIRE(run_scenario(protocol, path.string()).succeeded);
-  }
-  return path.string();
-}
-
 // Every scenario file runs with a measurement at hand: those that replay none ignore it.
 std::vector<std::string> with_measurement() {
   return {"measurement.file=" + protocol_record()};

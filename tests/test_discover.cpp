@@ -22,24 +22,12 @@ namespace {
 
 const std::string kBase = "configs/discover/ch7_base.yaml";
 
-// The chapter-7 protocol's inputs (power and deflection at 16 Hz), shortened to keep the suite
-// quick: 200 s of multisines to identify, 100 s of random steps to validate. The whole protocol
-// is scripts/discover_matrix.py's.
-std::string protocol_record() {
-  const std::string path =
-      (std::filesystem::path(process_directory("discover")) / "protocol.h5").string();
-  if (!std::filesystem::exists(path)) {
-    const Scenario protocol = load_scenario(source_path("configs/discover/ch7_protocol.yaml"),
-                                            {"scenario.duration=300 s"}, shared_units());
-    REQUIRE(run_scenario(protocol, path).succeeded);
-  }
-  return path;
-}
-
 // A measurement of the base model with `hidden` overrides (the effect it holds), read by the
 // chapter-7 bench: load cell 0.5 mN resolution and 1 mN noise, L* jitter and spikes.
 std::string measurement(const std::string& name, std::vector<std::string> hidden) {
-  hidden.push_back("measurement.file=" + protocol_record());
+  // The protocol cut to 200 s of multisines to identify and 100 s of random steps to validate,
+  // to keep the suite quick; the whole protocol is scripts/discover_matrix.py's.
+  hidden.push_back("measurement.file=" + protocol_record("300 s"));
   hidden.push_back("scenario.duration=300 s");
   const Scenario truth = load_scenario(source_path(kBase), hidden, shared_units());
   const auto bench =

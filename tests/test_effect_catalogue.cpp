@@ -15,18 +15,6 @@ using namespace tcpmsim::testing;
 
 namespace {
 
-// The chapter-7 protocol's record, the measurement the base model replays.
-std::string protocol_record() {
-  const std::string path =
-      (std::filesystem::path(process_directory("catalogue")) / "protocol.h5").string();
-  if (!std::filesystem::exists(path)) {
-    const Scenario protocol = load_scenario(source_path("configs/discover/ch7_protocol.yaml"),
-                                            {"scenario.duration=60 s"}, shared_units());
-    REQUIRE(run_scenario(protocol, path).succeeded);
-  }
-  return path;
-}
-
 Scenario base_model(const std::string& data, std::vector<std::string> overrides = {}) {
   overrides.push_back("measurement.file=" + data);
   overrides.push_back("scenario.duration=60 s");
@@ -50,7 +38,7 @@ TEST_CASE("The catalogue names the eight effects of the discovery workflow exact
 }
 
 TEST_CASE("Every candidate attaches to the chapter-7 base model, runs, and frees real parameters") {
-  const std::string data_path = protocol_record();
+  const std::string data_path = protocol_record("60 s");
   const Scenario base = base_model(data_path);
   const MeasuredData data = read_measured_data(data_path, *shared_units());
   const Context fitted = base.make_context();
@@ -90,7 +78,7 @@ TEST_CASE("Every candidate attaches to the chapter-7 base model, runs, and frees
 }
 
 TEST_CASE("Candidates that cannot attach to a base model are skipped with the reason") {
-  const std::string data_path = protocol_record();
+  const std::string data_path = protocol_record("60 s");
   const MeasuredData data = read_measured_data(data_path, *shared_units());
   SECTION("no compared coil output: no inductance candidate") {
     const Scenario base = base_model(data_path);

@@ -142,6 +142,21 @@ std::string process_directory(const std::string& name) {
   return directory.string();
 }
 
+std::string protocol_record(const std::string& duration) {
+  std::string stem = duration.empty() ? "ch7_protocol" : "ch7_protocol_" + duration;
+  std::replace(stem.begin(), stem.end(), ' ', '_');
+  const auto path = std::filesystem::path(process_directory("protocol")) / (stem + ".h5");
+  if (!std::filesystem::exists(path)) {
+    std::vector<std::string> overrides;
+    if (!duration.empty()) overrides.push_back("scenario.duration=" + duration);
+    const Scenario protocol =
+        load_scenario(source_path("configs/discover/ch7_protocol.yaml"), overrides, shared_units());
+    if (!run_scenario(protocol, path.string()).succeeded)
+      throw std::runtime_error("the chapter-7 protocol did not run");
+  }
+  return path.string();
+}
+
 std::string source_path(const std::string& relative) {
   return std::string(TCPMSIM_SOURCE_DIR) + "/" + relative;
 }

@@ -57,5 +57,9 @@ std::string source_path(const std::string& relative);
 // A directory of this test process's own under the temporary directory, "<name>_<pid>" (ctest
 // runs cases in parallel processes, which must not share files), created if missing.
 std::string process_directory(const std::string& name);
+// The chapter-7 bench's record (configs/discover/ch7_protocol.yaml, its inputs at 16 Hz), cut to
+// `duration` ("" for the whole 620 s): the measurement the model scenarios replay. Run once per
+// process and duration, in process_directory("protocol").
+std::string protocol_record(const std::string& duration = "");
 
 }  // namespace tcpmsim::testing
