@@ -41,7 +41,7 @@ const T& required(const Scenario& scenario, const std::string& what) {
 constexpr const char* kDeflectionOffset = "estimator.calibration.deflection_offset";
 constexpr const char* kForceOffset = "estimator.calibration.force_offset";
 
-// The three runs of one task, loaded up front: udunits2's parser is not thread-safe.
+// The three runs of one task, loaded up front: unit conversions take udunits2's one lock.
 struct PreparedTask {
   std::string config;
   Scenario deflection_calibration, force_calibration, task;

@@ -45,7 +45,7 @@ std::string offset_path(const std::string& estimator) {
   return estimator + ".calibration.deflection_offset";
 }
 
-// The two runs of one task, loaded up front: udunits2's parser is not thread-safe.
+// The two runs of one task, loaded up front: unit conversions take udunits2's one lock.
 struct PreparedPairTask {
   Scenario calibration, task;
   PairNames names;

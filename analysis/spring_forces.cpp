@@ -60,8 +60,8 @@ ForceDifferences differences(const ForceWindow& window, double nominal) {
   return result;
 }
 
-// Loading reads units through udunits2, whose parser is not thread-safe: load on the caller's
-// thread, integrate on the pool.
+// Loading reads units through udunits2, whose calls take one process-wide lock: load on the
+// caller's thread, integrate on the pool.
 struct PreparedRun {
   Scenario scenario;
   double nominal_force = 0.0;

@@ -15,8 +15,9 @@ class UnitError : public std::runtime_error {
 
 // Unit conversion at the configuration boundary, backed by udunits2 and its unit database.
 // Knows SI prefixes, offset units (degC), and derived units ("N.s/mm", "uH/degC").
-// Not thread-safe: udunits2's parser keeps global state, so read scenarios on one thread
-// (integrating them in parallel afterwards is fine).
+// Safe on any thread: udunits2's parser keeps global state, so every call into it takes one
+// process-wide lock (units.cpp). Scenario loads on several threads therefore take turns at
+// their unit conversions; integrating in parallel is not affected.
 class UnitSystem {
  public:
   UnitSystem();
