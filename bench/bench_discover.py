@@ -7,12 +7,13 @@ Reference in the same run: one simulation of the base model replaying the data
 Usage: bench_discover.py BUILD_DIR"""
 import json
 import os
-import re
 import shutil
 import subprocess
 import sys
 import tempfile
 import time
+
+from chapter7_bench import protocol_record, simulation_seconds
 
 
 def main():
@@ -20,18 +21,13 @@ def main():
     tcpmsim = os.path.join(build, "tcpmsim")
     work = tempfile.mkdtemp()
     try:
-        inputs = os.path.join(work, "inputs.h5")
-        subprocess.run([tcpmsim, "run", "configs/discover/ch7_protocol.yaml", "-q", "-o", inputs],
-                       check=True)
+        inputs = protocol_record(tcpmsim, os.path.join(work, "inputs.h5"))
         data = os.path.join(work, "measured.csv")
         subprocess.run([tcpmsim, "measure", "configs/discover/ch7_base.yaml", "--set",
                         "measurement.file=" + inputs, "--set",
                         "muscle.effects=[{type: hysteresis, stiffness: 50 N/m, force: 6 mN}]",
                         "--bench", "configs/discover/ch7_bench.yaml", "-o", data, "-q"], check=True)
-        simulation = float(re.search(r"median_seconds=([0-9.e+-]+)", subprocess.run(
-            [os.path.join(build, "bench", "bench_integration"), "configs/discover/ch7_base.yaml",
-             "5", "measurement.file=" + data], check=True, capture_output=True,
-            text=True).stdout).group(1))
+        simulation = simulation_seconds(build, data)
         print(f"one simulation of the base model replaying 620 s at 16 Hz: {simulation * 1e3:.1f} ms")
         out = os.path.join(work, "discover")
         started = time.perf_counter()

@@ -16,6 +16,8 @@ import sys
 import tempfile
 import time
 
+from chapter7_bench import protocol_record, simulation_seconds
+
 FAR = ("set: [muscle.thermal_force.kappa_P=8.64e-3 N/J, muscle.thermal_force.kappa_c=0.105 1/s, "
        "muscle.mechanics.force_offset=0.0855 N, muscle.mechanics.k1=12.96e-3 N/mm, "
        "muscle.mechanics.k2=2.16e-3 N/mm, muscle.mechanics.damping=5.16e-3 N*s/mm]\n")
@@ -35,13 +37,8 @@ def main():
     tcpmsim = os.path.join(build, "tcpmsim")
     work = tempfile.mkdtemp()
     try:
-        data = os.path.join(work, "bench.h5")
-        subprocess.run([tcpmsim, "run", "configs/discover/ch7_protocol.yaml", "-q", "-o", data],
-                       check=True)
-        simulation = float(re.search(r"median_seconds=([0-9.e+-]+)", subprocess.run(
-            [os.path.join(build, "bench", "bench_integration"), "configs/discover/ch7_base.yaml",
-             "5", "measurement.file=" + data], check=True, capture_output=True,
-            text=True).stdout).group(1))
+        data = protocol_record(tcpmsim, os.path.join(work, "bench.h5"))
+        simulation = simulation_seconds(build, data)
         print(f"one simulation of the model replaying 620 s at 16 Hz: {simulation * 1e3:.1f} ms")
         far = os.path.join(work, "far.yaml")
         with open("configs/discover/ch7_fit.yaml") as source, open(far, "w") as target:
