@@ -13,6 +13,7 @@ and the median validation gap shrink.
 
   scripts/discover_matrix.py --build build --out results/discover_matrix            # full
   scripts/discover_matrix.py --noise 2 --seeds 1 --out results/discover_matrix_ci   # reduced
+  scripts/discover_matrix.py --resume ...   # go on with an interrupted matrix
 """
 import argparse
 import concurrent.futures
@@ -130,12 +131,22 @@ def one_case(arguments, inputs, effect, noise_mn, seed):
     name = f"{effect}_{noise_mn}mN_seed{seed}"
     directory = os.path.join(arguments.out, name)
     os.makedirs(directory, exist_ok=True)
-    log = os.path.join(directory, "log.txt")
-    open(log, "w", encoding="utf-8").close()
     rng = random.Random(f"{effect} {noise_mn} {seed}")
     truth = [f"{path}={value * rng.uniform(0.8, 1.2):.10g} {unit}"
              for path, (value, unit) in BASE_PARAMETERS.items()]
     form, hidden = effect_forms(effect, rng)
+    outputs = "force,inductance_measure" if arguments.inductance else "force"
+    # What defines the case: a finished case with the same definition is reused by --resume.
+    definition = {"truth": truth, "hidden": hidden, "noise_mN": noise_mn, "seed": seed,
+                  "outputs": outputs}
+    finished = os.path.join(directory, "case.json")
+    if arguments.resume and os.path.exists(finished):
+        with open(finished, encoding="utf-8") as file:
+            result = json.load(file)
+        if result.get("definition") == definition and "verdict" in result:
+            return result
+    log = os.path.join(directory, "log.txt")
+    open(log, "w", encoding="utf-8").close()
     tool = os.path.join(arguments.build, "tcpmsim")
     data = os.path.join(directory, "measured.csv")
     command = [tool, "measure", BASE, "--set", f"measurement.file={inputs}",
@@ -144,7 +155,6 @@ def one_case(arguments, inputs, effect, noise_mn, seed):
         command += ["--set", override]
     if run(command, log) != 0:
         return {"case": name, "effect": effect, "form": form, "error": "measure failed: see " + log}
-    outputs = "force,inductance_measure" if arguments.inductance else "force"
     command = [tool, "discover", "--model", BASE, "--data", data, "--inputs", "power,deflection",
                "--outputs", outputs, "--validate-from", "400", "--out",
                os.path.join(directory, "discover"), "-q", "-j", str(arguments.threads)]
@@ -154,10 +164,13 @@ def one_case(arguments, inputs, effect, noise_mn, seed):
         return {"case": name, "effect": effect, "form": form, "error": "discover failed: see " + log}
     with open(os.path.join(directory, "discover", "discovery.json"), encoding="utf-8") as file:
         found = json.load(file)
-    return {"case": name, "effect": effect, "form": form, "noise_mN": noise_mn, "seed": seed,
-            "verdict": found["verdict"], "gap_shrink": found["gap_shrink"],
-            "seconds": found["seconds"],
-            "ranking": [(c["effect"], c.get("delta_bic")) for c in found["ranking"]]}
+    result = {"case": name, "effect": effect, "form": form, "noise_mN": noise_mn, "seed": seed,
+              "verdict": found["verdict"], "gap_shrink": found["gap_shrink"],
+              "seconds": found["seconds"], "definition": definition,
+              "ranking": [(c["effect"], c.get("delta_bic")) for c in found["ranking"]]}
+    with open(finished, "w", encoding="utf-8") as file:
+        json.dump(result, file, indent=1)
+    return result
 
 
 def table(results):
@@ -210,6 +223,9 @@ def main():
     parser.add_argument("--plots", action="store_true", help="draw each case's pictures")
     parser.add_argument("--check", action="store_true",
                         help="exit 1 unless every case's verdict is its hidden effect (none: none)")
+    parser.add_argument("--resume", action="store_true",
+                        help="reuse the cases of --out already finished with the same definition "
+                        "(a long matrix can run in pieces)")
     parser.add_argument("--no-inductance", dest="inductance", action="store_false",
                         help="compare the force only (no L* output, no inductance candidate)")
     arguments = parser.parse_args()
