@@ -5,6 +5,7 @@
 
 #include "analysis/statistics.h"
 #include "sim/io/delimited_file.h"
+#include "sim/value_check.h"
 
 namespace tcpmsim::analysis {
 
@@ -89,6 +90,27 @@ SequenceAnalysis analyse_sequence(const CoilSpring& spring, const CoilSequence& 
   return a;
 }
 
+namespace {
+
+// Every step's coil length Lc + x must be positive: a position past -Lc is no coil.
+void check_coil_lengths(const CoilSpring& spring, const CoilSequence& sequence) {
+  const double coil_length = spring.coil_length();
+  for (std::size_t i = 0; i < sequence.steps(); ++i) {
+    const double length = coil_length + sequence.position[i];
+    if (length > 0.0) continue;
+    throw DataFileError(
+        {sequence.file, sequence.line[i], sequence.position_column[i], {}},
+        "field 4 (measured position [mm]): the coil would be " + number_text(length * 1e3) +
+            " mm long (Lc = body_length - "
+            "wire_diameter = " +
+            number_text(coil_length * 1e3) + " mm of spring " + spring.name + ", plus " +
+            number_text(sequence.position[i] * 1e3) + " mm); expected a position above " +
+            number_text(-coil_length * 1e3) + " mm");
+  }
+}
+
+}  // namespace
+
 std::vector<SequenceAnalysis> analyse_coil_springs(const std::vector<CoilSpring>& springs,
                                                    const std::string& data_directory) {
   std::vector<SequenceAnalysis> results;
@@ -103,11 +125,13 @@ std::vector<SequenceAnalysis> analyse_coil_springs(const std::vector<CoilSpring>
       }
       const CoilSequence sequence = read_coil_sequence(file.string(), entry.name);
       if (sequence.steps() < 3) {
-        throw DataFileError({file.string(), 0, 0, {}},
-                            "expected the free-length line and at least two deflection steps, "
-                            "got " +
-                                std::to_string(sequence.steps()) + " lines");
+        throw DataFileError(
+            {file.string(), sequence.line.empty() ? 1 : sequence.line.back() + 1, 1, {}},
+            "expected the free-length line and at least two deflection steps, "
+            "got " +
+                std::to_string(sequence.steps()) + " lines");
       }
+      check_coil_lengths(spring, sequence);
       kept.push_back(sequence.without_first(1));  // the free length: windings touch
     }
     const auto calibration = std::find_if(kept.begin(), kept.end(), [&](const CoilSequence& s) {

@@ -40,6 +40,7 @@ CoilSequence from_table(const DelimitedFile& table, const std::string& name) {
                      previous + "', got '" + row.fields[3].text + "'");
     }
     sequence.line.push_back(row.line);
+    sequence.position_column.push_back(row.fields[3].column);
     sequence.position.push_back(position_mm * 1e-3);
     sequence.resistance.push_back(std::move(resistance));
     sequence.inductance.push_back(std::move(inductance));
@@ -55,6 +56,7 @@ CoilSequence CoilSequence::without_first(std::size_t count) const {
   kept.file = file;
   for (std::size_t i = count; i < steps(); ++i) {
     kept.line.push_back(line[i]);
+    kept.position_column.push_back(position_column[i]);
     kept.position.push_back(position[i]);
     kept.resistance.push_back(resistance[i]);
     kept.inductance.push_back(inductance[i]);

@@ -11,6 +11,7 @@ struct CoilSequence {
   std::string name;  // file stem, e.g. "S1_01"
   std::string file;
   std::vector<int> line;                        // source line of each step
+  std::vector<int> position_column;             // source column of each step's position
   std::vector<double> position;                 // [m] relative to the free length
   std::vector<std::vector<double>> resistance;  // [ohm] readings per step
   std::vector<std::vector<double>> inductance;  // [H] readings per step

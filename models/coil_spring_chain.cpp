@@ -63,7 +63,10 @@ std::unique_ptr<CoilSpringChain> CoilSpringChain::from_config(const std::string&
   using P = CoilSpringParameters;
   P p;
   ParameterBindings<P> bind;
-  p.windings = static_cast<int>(node.integer("windings", ValueCheck::at_least(1)));
+  p.windings = static_cast<int>(node.integer(
+      "windings", ValueCheck::count(1e4,
+                                    "each winding is two states of the stiff system, and the "
+                                    "inductance sums every pair of windings")));
   bind.quantity(node, "rest_length", "m", ValueCheck::positive(), p, bind.member(&P::rest_length));
   bind.quantity(node, "mass", "kg", ValueCheck::positive(), p, bind.member(&P::mass));
   bind.quantity(node, "stiffness", "N/m", ValueCheck::positive(), p, bind.member(&P::stiffness));

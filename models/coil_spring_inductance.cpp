@@ -5,6 +5,7 @@
 
 #include "models/inductance/loop_mutual.h"
 #include "sim/context.h"
+#include "sim/value_check.h"
 
 namespace tcpmsim {
 
@@ -19,6 +20,25 @@ bool same(const P& a, const P& b) {
                   b.shortest_length, b.longest_length, b.preload_length);
 }
 }  // namespace
+
+std::string coil_geometry_problem(const P& p) {
+  if (!(p.coil_radius > 0.5 * p.wire_diameter)) {
+    return "coil_radius: " + number_text(p.coil_radius) +
+           " m is not larger than half the "
+           "wire diameter (" +
+           number_text(0.5 * p.wire_diameter) +
+           " m): the wire does not fit "
+           "in the coil";
+  }
+  const double solid_length = p.windings * p.wire_diameter;
+  if (!(p.shortest_length > solid_length)) {
+    return "operating_range: the shortest length " + number_text(p.shortest_length) +
+           " m is not longer than the solid length, windings x wire_diameter = " +
+           std::to_string(p.windings) + " x " + number_text(p.wire_diameter) +
+           " m = " + number_text(solid_length) + " m: the windings would overlap";
+  }
+  return {};
+}
 
 SpringInductanceModel::SpringInductanceModel(const CoilSpringInductanceParameters& parameters)
     : parameters_(parameters),
@@ -84,6 +104,10 @@ std::unique_ptr<CoilSpringInductance> CoilSpringInductance::from_config(
                 bind.member(&P::shortest_length), bind.member(&P::longest_length));
   bind.quantity_or(node, "preload_length", "m", initial_length, ValueCheck::positive(), p,
                    bind.member(&P::preload_length));
+  if (const std::string problem = coil_geometry_problem(p); !problem.empty()) {
+    const std::string key = problem.substr(0, problem.find(':'));
+    node.at(key).fail(problem.substr(key.size() + 2));
+  }
   return std::make_unique<CoilSpringInductance>(
       group, p, std::move(bind), chain_group + ".rest_length", chain_group + ".stiffness");
 }
@@ -108,10 +132,19 @@ std::vector<ParameterDeclaration> CoilSpringInductance::parameters() const {
   return bindings_.declarations(defaults());
 }
 
-std::unique_ptr<RunState> CoilSpringInductance::create_run_state(const RunSetup& setup) const {
+P CoilSpringInductance::run_parameters(const RunSetup& setup) const {
   P p = bindings_.assign(defaults(), setup.parameters);
   p.rest_length = setup.context.parameter(rest_length_path_);
   p.stiffness = setup.context.parameter(stiffness_path_);
+  return p;
+}
+
+std::string CoilSpringInductance::check_parameters(const RunSetup& setup) const {
+  return coil_geometry_problem(run_parameters(setup));
+}
+
+std::unique_ptr<RunState> CoilSpringInductance::create_run_state(const RunSetup& setup) const {
+  const P p = run_parameters(setup);
   auto run = std::make_unique<Run>();
   run->model = same(p, defaults()) ? built_ : std::make_shared<const SpringInductanceModel>(p);
   run->positions.assign(static_cast<std::size_t>(p.windings), 0.0);

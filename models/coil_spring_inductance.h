@@ -34,6 +34,12 @@ struct CoilSpringInductanceParameters {
   double preload_length = 0.0;   // the static length the fit must reproduce [m]
 };
 
+// "" when the geometry can be a coil, else why not (a message that starts with the key to blame):
+// the wire must fit inside the coil radius, and the N windings must not overlap anywhere in the
+// operating range (l_min > N delta, the solid length), which also keeps every ring distance
+// inside the range Maxwell's evaluator tabulates.
+std::string coil_geometry_problem(const CoilSpringInductanceParameters& parameters);
+
 // The constrained least-squares fit of (4.13): y = 1/l = alpha L + beta through (L_p, y_p).
 struct InverseLengthFit {
   double alpha = 0.0;  // [1/(H m)]
@@ -77,6 +83,7 @@ class CoilSpringInductance final : public Component {
   std::vector<OutputDeclaration> outputs() const override;
   std::vector<InputDeclaration> inputs() const override;
   std::vector<ParameterDeclaration> parameters() const override;
+  std::string check_parameters(const RunSetup& setup) const override;
   std::unique_ptr<RunState> create_run_state(const RunSetup& setup) const override;
   void compute_observations(const Evaluation& evaluation) const override;
 
@@ -85,6 +92,7 @@ class CoilSpringInductance final : public Component {
 
  private:
   struct Run;
+  CoilSpringInductanceParameters run_parameters(const RunSetup& setup) const;
   std::shared_ptr<const SpringInductanceModel> built_;
   ParameterBindings<CoilSpringInductanceParameters> bindings_;
   std::string rest_length_path_;

@@ -151,9 +151,22 @@ std::unique_ptr<Signal> make_multisine(const MultisineSettings& s) {
       unit_signal.with_equal_amplitudes(s.offset, s.amplitude));
 }
 
+// The sequence is drawn whole when the scenario is read, a sample per 1/f_s: "" when its size
+// is within the limit, else why not.
+std::string random_steps_size_problem(const RandomStepsSettings& settings) {
+  constexpr double kMaxSamples = 1e8;
+  const double samples = settings.duration * settings.sample_rate;
+  if (samples <= kMaxSamples) return {};
+  return "duration x sample_rate = " + number_text(samples) + " samples, over the limit of " +
+         number_text(kMaxSamples) +
+         " (the sequence is drawn and held whole); lower the sample rate or the duration";
+}
+
 std::unique_ptr<Signal> make_random_steps(const RandomStepsSettings& settings, std::uint64_t seed,
                                           const std::string& purpose) {
   if (!(settings.low < settings.high)) throw std::invalid_argument("expected range lower < upper");
+  if (const std::string problem = random_steps_size_problem(settings); !problem.empty())
+    throw std::invalid_argument(problem);
   if (switching_probability(settings) > 1.0) {
     throw std::invalid_argument(
         "the switching probability 1/(0.5 tau_p f_s) exceeds 1; need tau_p >= 2/f_s");
@@ -281,7 +294,8 @@ std::unique_ptr<Signal> multisine(const ConfigNode& node, std::string_view unit,
                                   const SignalContext& context) {
   Declared declared;
   MultisineSettings s;
-  s.components = static_cast<int>(node.integer("components", ValueCheck::at_least(1)));
+  s.components = static_cast<int>(node.integer(
+      "components", ValueCheck::count(1e6, "every evaluation of the signal sums each component")));
   std::tie(s.f_low, s.f_high) = declared.interval(node, "band", "Hz", ValueCheck::positive());
   RandomStream stream(context.seed, node.path());
   const std::size_t before = declared.list.size();
@@ -325,6 +339,8 @@ std::unique_ptr<Signal> random_steps(const ConfigNode& node, std::string_view un
   settings.scale_to_range = node.boolean_or("scale_to_range", true);
   settings.duration =
       declared.quantity_or(node, "duration", "s", context.duration, ValueCheck::positive());
+  if (const std::string problem = random_steps_size_problem(settings); !problem.empty())
+    node.at("sample_rate").fail(problem);
   if (switching_probability(settings) > 1.0) {
     node.at("process_time_constant")
         .fail("the switching probability 1/(0.5 tau_p f_s) exceeds 1; need tau_p >= 2/f_s = " +
@@ -413,7 +429,8 @@ std::unique_ptr<Signal> stepped_sine_sweep(const ConfigNode& node, std::string_v
         declared.interval(node, "band", "Hz", ValueCheck::positive());
   }
   settings.frequencies = static_cast<int>(
-      node.integer_or("frequencies", settings.frequencies, ValueCheck::at_least(1)));
+      node.integer_or("frequencies", settings.frequencies,
+                      ValueCheck::count(1e4, "the sweep dwells a number of periods on each")));
   settings.periods =
       declared.quantity_or(node, "periods", "1", settings.periods, ValueCheck::positive());
   settings.start_time =

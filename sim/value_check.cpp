@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 namespace tcpmsim {
 
@@ -26,6 +27,12 @@ ValueCheck ValueCheck::between(double lower, double upper) {
   ValueCheck check;
   check.lower_ = lower;
   check.upper_ = upper;
+  return check;
+}
+
+ValueCheck ValueCheck::count(double limit, std::string reason) {
+  ValueCheck check = between(1.0, limit);
+  check.reason_ = std::move(reason);
   return check;
 }
 
@@ -67,7 +74,8 @@ std::string ValueCheck::expectation(std::string_view unit) const {
   if (lower_open_ && lower_ == 0.0 && std::isinf(upper_)) return "a positive value" + in_unit;
   if (lower_ == 0.0 && std::isinf(upper_)) return "a non-negative value" + in_unit;
   if (std::isinf(upper_)) return "a value of at least " + number_text(lower_) + in_unit;
-  return "a value in [" + number_text(lower_) + ", " + number_text(upper_) + "]" + in_unit;
+  const std::string limit = reason_.empty() ? "" : " (the limit: " + reason_ + ")";
+  return "a value in [" + number_text(lower_) + ", " + number_text(upper_) + "]" + in_unit + limit;
 }
 
 }  // namespace tcpmsim

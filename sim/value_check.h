@@ -16,6 +16,9 @@ class ValueCheck {
   static ValueCheck at_least(double lower);
   static ValueCheck between(double lower, double upper);  // inclusive
   static ValueCheck fraction();                           // [0, 1]
+  // A size read from a scenario (components, windings, samples): in [1, limit], where the limit
+  // keeps a run's memory and time bounded; `reason` says what the limit protects, for messages.
+  static ValueCheck count(double limit, std::string reason);
   bool accepts(double value) const;
   bool unbounded() const;
   // "a positive value", "a value in [0, 1]", ... followed by " in <unit>" when given.
@@ -28,6 +31,7 @@ class ValueCheck {
   double lower_ = -std::numeric_limits<double>::infinity();
   double upper_ = std::numeric_limits<double>::infinity();
   bool lower_open_ = false;
+  std::string reason_;
 };
 
 // A number as messages print it (the default stream format: 0.001, 1e-09, 2.5).
