@@ -13,6 +13,7 @@
 #include "analysis/coil_fit_command.h"
 #include "analysis/control_tasks_command.h"
 #include "analysis/spring_forces_command.h"
+#include "cli/interrupt.h"
 #include "cli/progress.h"
 #include "identification/bench_measurement.h"
 #include "identification/discovery_report.h"
@@ -20,6 +21,7 @@
 #include "kinds/standard_kinds.h"
 #include "sim/config/config_error.h"
 #include "sim/io/hdf5_files.h"
+#include "sim/io/record_recovery.h"
 #include "sim/kind_listing.h"
 #include "sim/run.h"
 #include "sweep/batch_run.h"
@@ -37,6 +39,9 @@ enum ExitCode : int {
   kConfigError = 3,
   kOutputError = 4,
   kInternalError = 5,
+  // 128 + the signal's number, as a shell reports a process the signal ended.
+  kInterruptedBySigint = 130,
+  kInterruptedBySigterm = 143,
 };
 
 struct Options {
@@ -52,6 +57,8 @@ struct Options {
   std::vector<std::string> configs;  // run: one or more scenario files
   std::string output_directory = "results";
   int jobs = 1;
+  std::uint64_t max_output_bytes = 2'000'000'000;  // run: --max-output-size
+  std::string recover_output;                      // recover: -o
   std::string data;           // fit: the measurement, in place of the fit file's
   std::string fit_directory;  // fit: where its outputs go
   std::string bench;          // measure: the bench file
@@ -72,6 +79,9 @@ int validate(const Options& options) {
             << std::count_if(scenario.system->channels().begin(), scenario.system->channels().end(),
                              [](const auto& channel) { return channel.recorded; })
             << " output channels\n";
+  const tcpmsim::RecordSize record = tcpmsim::estimate_record_size(scenario);
+  std::cout << "  record: " << record.samples << " samples x " << record.columns
+            << " columns, about " << tcpmsim::byte_text(record.bytes()) << " uncompressed\n";
   for (const auto& state : scenario.system->states()) {
     std::cout << "  state  " << state.name << " [" << state.unit << "]\n";
   }
@@ -105,11 +115,12 @@ int run_batch(const Options& options) {
   std::vector<tcpmsim::sweep::BatchRun> runs;
   {
     tcpmsim::BatchProgress progress(stderr, "batch");
-    runs = tcpmsim::sweep::run_batch(
-        {options.configs, options.overrides, options.output_directory, options.jobs},
-        std::make_shared<tcpmsim::UnitSystem>(), [&](std::size_t done, std::size_t total) {
-          if (!options.quiet) progress.update(done, total);
-        });
+    runs = tcpmsim::sweep::run_batch({options.configs, options.overrides, options.output_directory,
+                                      options.jobs, static_cast<double>(options.max_output_bytes)},
+                                     std::make_shared<tcpmsim::UnitSystem>(),
+                                     [&](std::size_t done, std::size_t total) {
+                                       if (!options.quiet) progress.update(done, total);
+                                     });
   }
   int failed = 0;
   for (const auto& run : runs) {
@@ -132,17 +143,25 @@ int run(const Options& options) {
   if (options.configs.size() > 1) return run_batch(options);
   tcpmsim::Scenario scenario = tcpmsim::load_scenario(options.configs.front(), options.overrides,
                                                       std::make_shared<tcpmsim::UnitSystem>());
+  tcpmsim::check_record_size(scenario, static_cast<double>(options.max_output_bytes));
   const std::string output =
       options.output.empty() ? "results/" + scenario.settings.name + ".h5" : options.output;
   tcpmsim::RunOutcome outcome;
   {
+    const tcpmsim::InterruptGuard interrupts;
     tcpmsim::ProgressLine progress(stderr, scenario.settings.duration);
     auto report = [&](double time, long steps) {
+      tcpmsim::InterruptGuard::stop_if_received();
       if (!options.quiet) progress.update(time, steps);
     };
     outcome = tcpmsim::run_scenario(scenario, output, report);
   }
   const auto& stats = outcome.statistics;
+  if (outcome.interrupted) {
+    std::cerr << "tcpmsim: " << outcome.failure << " at t = " << outcome.time_reached << " s\n"
+              << "tcpmsim: the record up to there is in " << outcome.output_path << "\n";
+    return outcome.failure.ends_with("SIGINT") ? kInterruptedBySigint : kInterruptedBySigterm;
+  }
   if (!outcome.succeeded) {
     std::cerr << "tcpmsim: simulation failed: " << outcome.failure << "\n"
               << "tcpmsim: the record up to the failure is in " << outcome.output_path << "\n";
@@ -279,6 +298,16 @@ int discover(const Options& options) {
 }
 
 // A synthetic measurement: a scenario read by a bench's instruments, written as a CSV file.
+int recover(const Options& options) {
+  const tcpmsim::RecoveredRecord recovered =
+      tcpmsim::recover_partial_record(options.config, options.recover_output);
+  if (!options.quiet) {
+    std::cout << "wrote " << recovered.path << ": " << recovered.samples
+              << " samples, up to t = " << recovered.time_reached << " s (status interrupted)\n";
+  }
+  return kSuccess;
+}
+
 int measure(const Options& options) {
   auto units = std::make_shared<tcpmsim::UnitSystem>();
   const tcpmsim::Scenario scenario = load(options);
@@ -400,6 +429,20 @@ int main(int argc, char** argv) {
   run_command->add_option("-o,--output", options.output,
                           "Output file (default: results/<scenario name>.h5)");
   run_command->add_flag("-q,--quiet", options.quiet, "No progress line or summary");
+  run_command
+      ->add_option("--max-output-size", options.max_output_bytes,
+                   "Refuse a record larger than this before running, uncompressed (e.g. 500MB, "
+                   "20GB; default 2GB)")
+      ->transform(CLI::AsSizeValue(true));
+
+  CLI::App* recover_command = app.add_subcommand(
+      "recover", "Turn the <out>.partial of a killed run into <out stem>.interrupted.h5");
+  recover_command->add_option("partial", options.config, "The .partial file")
+      ->required()
+      ->check(CLI::ExistingFile);
+  recover_command->add_option("-o,--output", options.recover_output,
+                              "The record (default: <out stem>.interrupted.h5)");
+  recover_command->add_flag("-q,--quiet", options.quiet, "No summary");
 
   CLI::App* validate_command =
       app.add_subcommand("validate", "Check a scenario file and list its states and outputs");
@@ -548,6 +591,7 @@ int main(int argc, char** argv) {
     return code == 0 ? kSuccess : kUsageError;
   }
   if (run_command->parsed()) return guarded(run, options);
+  if (recover_command->parsed()) return guarded(recover, options);
   if (kinds_command->parsed()) {
     options.markdown = markdown;
     return guarded(list_kinds, options);

@@ -680,6 +680,15 @@ SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output,
   return run(t0, t_end, output, sink);
 }
 
+void Integrator::report_progress(const Progress& progress, double reached, long steps) {
+  try {
+    progress(reached, steps);
+  } catch (const StopRequest& request) {
+    accumulate_statistics();
+    throw RunInterrupted(request.what(), reached, statistics_);
+  }
+}
+
 SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output, OutputSink& sink,
                                  const Progress& progress) {
   auto& cv = *cvode_;
@@ -751,9 +760,11 @@ SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output, Ou
                                  N_VGetArrayPointer(cv.scratch));
         sink.record(when, context_.signals());
         if (cv.sensitivities) record_sensitivities(when, N_VGetArrayPointer(cv.scratch));
-        ++statistics_.output_samples;
+        // A long step may cover many output times: observers hear of them too.
+        if (++statistics_.output_samples % kOutputsPerProgress == 0 && progress)
+          report_progress(progress, when, steps_taken);
       }
-      if (progress) progress(reached, steps_taken);
+      if (progress) report_progress(progress, reached, steps_taken);
     }
     t = stop;
     if (t < t_end) {

@@ -93,6 +93,27 @@ class SolverFailure : public std::runtime_error {
   SolverStatistics statistics_;
 };
 
+// Thrown by a progress observer to end a run early (an interrupt, a cancelled job); the run
+// stops after the step it reports and is ended with RunInterrupted.
+class StopRequest : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;  // the reason, e.g. "interrupted by SIGTERM"
+};
+
+// A run ended early at a StopRequest: the time reached and the statistics so far. Every output
+// time up to time() has been handed to the sink.
+class RunInterrupted : public std::runtime_error {
+ public:
+  RunInterrupted(const std::string& reason, double time, SolverStatistics statistics)
+      : std::runtime_error(reason), time_(time), statistics_(statistics) {}
+  double time() const { return time_; }
+  const SolverStatistics& statistics() const { return statistics_; }
+
+ private:
+  double time_;
+  SolverStatistics statistics_;
+};
+
 // CVODE (BDF, Newton) over a System and one run Context. Steps with CV_ONE_STEP, writes
 // outputs by interpolation (CVodeGetDky) on a uniform grid, stops hard at every breakpoint the
 // components declare and restarts there with CVodeReInit. The state CVODE advances is the
@@ -104,6 +125,9 @@ class Integrator {
   Integrator(const Integrator&) = delete;
   Integrator& operator=(const Integrator&) = delete;
 
+  // Called after every step, and after every kOutputsPerProgress output samples within a step;
+  // may throw StopRequest to end the run (as RunInterrupted).
+  static constexpr long kOutputsPerProgress = 4096;
   using Progress = std::function<void(double time, long steps)>;
 
   // Integrates from t0 to t_end and records outputs at start + k * interval (and t_end).
@@ -124,6 +148,8 @@ class Integrator {
   void refresh_tolerances();
   void accumulate_statistics();
   SolverFailure failure(const std::string& headline);
+  // Calls `progress`; a StopRequest from it becomes RunInterrupted with the statistics so far.
+  void report_progress(const Progress& progress, double reached, long steps);
 
   std::unique_ptr<detail::CvodeHandles> cvode_;
   const System& system_;

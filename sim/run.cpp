@@ -3,9 +3,13 @@
 #include <H5Cpp.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 
+#include "sim/config/config_error.h"
 #include "sim/io/hdf5_recorder.h"
+#include "sim/io/record_layout.h"
+#include "sim/value_check.h"
 
 namespace tcpmsim {
 
@@ -19,6 +23,35 @@ const char* linear_solver_name(LinearSolverKind kind) {
       break;
   }
   return "dense";
+}
+
+RecordSize estimate_record_size(const Scenario& scenario) {
+  const ScenarioSettings& settings = scenario.settings;
+  RecordSize size;
+  size.samples =
+      std::floor((settings.duration - settings.output_start) / settings.output_interval) + 2.0;
+  size.columns = 1.0;
+  for (const auto& series : record_layout(*scenario.system))
+    size.columns += static_cast<double>(series.signal_indices.size());
+  return size;
+}
+
+std::string byte_text(double bytes) {
+  static constexpr const char* kUnits[] = {"B", "kB", "MB", "GB", "TB", "PB"};
+  int unit = 0;
+  while (bytes >= 1000.0 && unit < 5) bytes /= 1000.0, ++unit;
+  return number_text(bytes, 3) + " " + kUnits[unit];
+}
+
+void check_record_size(const Scenario& scenario, double limit_bytes) {
+  const RecordSize size = estimate_record_size(scenario);
+  if (size.bytes() <= limit_bytes) return;
+  throw ConfigError(scenario.settings.output_rate_location, "output.rate",
+                    "the record would hold " + number_text(size.samples, 4) + " samples x " +
+                        number_text(size.columns, 4) + " columns = " + byte_text(size.bytes()) +
+                        " (uncompressed), over the limit of " + byte_text(limit_bytes) +
+                        "; lower output.rate, shorten the scenario, or raise the limit with "
+                        "--max-output-size");
 }
 
 SolverStatistics integrate(const Scenario& scenario, Context& context, OutputSink& sink,
@@ -67,6 +100,13 @@ RunOutcome run_scenario(const Scenario& scenario, Context& context, const std::s
       outcome.statistics = failure.statistics();
       outcome.failure = failure.what();
       outcome.output_path = recorder.fail(failure.what(), failure.statistics());
+    } catch (const RunInterrupted& interruption) {
+      outcome.statistics = interruption.statistics();
+      outcome.failure = interruption.what();
+      outcome.interrupted = true;
+      outcome.time_reached = interruption.time();
+      outcome.output_path =
+          recorder.interrupt(interruption.what(), interruption.time(), interruption.statistics());
     }
   } catch (const H5::Exception& error) {
     throw std::runtime_error("cannot write " + output_path + ": HDF5 " + error.getFuncName() +

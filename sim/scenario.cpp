@@ -44,6 +44,7 @@ ScenarioSettings read_settings(const ConfigNode& root, const KindRegistry& kinds
   output.declare({"rate", "start", "compression", "compression_level"});
   const double rate = output.quantity("rate", "Hz", ValueCheck::positive());
   settings.output_interval = 1.0 / rate;
+  settings.output_rate_location = output.at("rate").location();
   settings.output_start = output.quantity_or("start", "s", 0.0, ValueCheck::non_negative());
   if (settings.output_start >= settings.duration) {
     output.at("start").fail("expected a start before the end of the scenario (" +

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "sim/config/config_error.h"
 #include "sim/config/config_node.h"
 #include "sim/registry.h"
 #include "sim/signal_reading.h"
@@ -26,7 +27,8 @@ struct ScenarioSettings {
   // The record's deflate level, 0 for none (output.compression): zlib at level 1 costs about
   // twice the integration of a typical run, so records are uncompressed unless asked.
   int compression_level = 0;
-  std::string measurement_file;  // measurement.file, found beside the scenario; empty: none
+  std::string measurement_file;         // measurement.file, found beside the scenario; empty: none
+  SourceLocation output_rate_location;  // where output.rate was given, for the record-size check
 };
 
 // An instance a scenario declares: a section of a top-level category, its name and its kind.

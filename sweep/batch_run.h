@@ -17,6 +17,7 @@ struct BatchOptions {
   std::vector<std::string> overrides;  // --set, for every file
   std::string output_directory = "results";
   int threads = 1;
+  double max_record_bytes = 2e9;  // each record's limit (check_record_size), before any run
 };
 
 struct BatchRun {

@@ -5,7 +5,9 @@
 
 #include <H5Cpp.h>
 
+#include <cstdint>
 #include <filesystem>
+#include <fstream>
 
 #include "sim/io/hdf5_files.h"
 #include "sim/io/hdf5_recorder.h"
@@ -176,6 +178,93 @@ TEST_CASE("An interrupted recording leaves no file behind") {
   }  // destroyed without finish(): as when an exception unwinds
   CHECK_FALSE(std::filesystem::exists(partial_path(path)));
   CHECK_FALSE(std::filesystem::exists(path));
+}
+
+TEST_CASE(
+    "A run stopped on request keeps as .interrupted.h5 exactly the samples an uninterrupted run "
+    "has up to the time reached (issue 13)") {
+  Scenario scenario = scenario_from_text(physical_muscle_yaml(), {"drive.power=0.2 W"});
+  const Trace whole = simulate(scenario);
+  const std::string path = temporary_path("stopped.h5");
+  std::filesystem::remove(path);
+  std::filesystem::remove(temporary_path("stopped.interrupted.h5"));
+  const auto stop_after_40_s = [](double time, long) {
+    if (time > 40.0) throw StopRequest("interrupted by a test");
+  };
+  const RunOutcome outcome = run_scenario(scenario, path, stop_after_40_s);
+  CHECK_FALSE(outcome.succeeded);
+  REQUIRE(outcome.interrupted);
+  CHECK(outcome.failure == "interrupted by a test");
+  CHECK(outcome.time_reached > 40.0);
+  CHECK_FALSE(std::filesystem::exists(path));
+  CHECK_FALSE(std::filesystem::exists(partial_path(path)));
+  REQUIRE(outcome.output_path == temporary_path("stopped.interrupted.h5"));
+
+  const H5::H5File file(outcome.output_path, H5F_ACC_RDONLY);
+  const H5::Group root = file.openGroup("/");
+  CHECK(text_attribute(root, "status") == "interrupted");
+  CHECK(text_attribute(root, "interruption") == "interrupted by a test");
+  CHECK(scalar_attribute<double>(root, "time_reached", H5::PredType::NATIVE_DOUBLE) ==
+        outcome.time_reached);
+  const std::vector<double> time = read_series(file, "/time");
+  REQUIRE_FALSE(time.empty());
+  CHECK(time.back() <= outcome.time_reached);
+  CHECK(time.back() > outcome.time_reached - 0.1);  // every output time the steps covered (10 Hz)
+  CHECK(scalar_attribute<std::int64_t>(root, "samples", H5::PredType::NATIVE_INT64) ==
+        static_cast<std::int64_t>(time.size()));
+  const auto prefix = [&](const std::vector<double>& values) {
+    return std::vector<double>(values.begin(),
+                               values.begin() + static_cast<std::ptrdiff_t>(time.size()));
+  };
+  CHECK(bitwise_equal(time, prefix(whole.time)));
+  CHECK(bitwise_equal(read_series(file, "/muscle/force"), prefix(whole["muscle/force"])));
+  CHECK(
+      bitwise_equal(read_series(file, "/muscle/temperature"), prefix(whole["muscle/temperature"])));
+}
+
+TEST_CASE("An output path that cannot be a record is refused before anything is simulated") {
+  Scenario scenario = scenario_from_text(physical_muscle_yaml());
+  long steps = 0;
+  const auto count_steps = [&](double, long) { ++steps; };
+
+  SECTION("a directory") {
+    const std::string directory = temporary_path("a_directory.h5");
+    std::filesystem::create_directories(directory);
+    CHECK_THROWS_WITH(run_scenario(scenario, directory, count_steps),
+                      Catch::Contains(directory) && Catch::Contains("it is a directory"));
+    CHECK_FALSE(std::filesystem::exists(partial_path(directory)));
+  }
+  SECTION("a device") {
+    CHECK_THROWS_WITH(run_scenario(scenario, "/dev/null", count_steps),
+                      Catch::Contains("/dev/null") && Catch::Contains("not a regular file"));
+  }
+  SECTION("a directory that cannot be made") {
+    const std::string blocked = temporary_path("a_file_in_the_way");
+    std::ofstream(blocked) << "x";
+    const std::string path = blocked + "/record.h5";
+    CHECK_THROWS_WITH(run_scenario(scenario, path, count_steps), Catch::Contains(path));
+  }
+  CHECK(steps == 0);
+}
+
+TEST_CASE(
+    "A record's size is known before the run, and one past the limit is refused at "
+    "output.rate") {
+  // physical_muscle_yaml: 100 s at 10 Hz, output.rate on line 3.
+  const Scenario scenario = scenario_from_text(physical_muscle_yaml());
+  const RecordSize size = estimate_record_size(scenario);
+  const Trace trace = simulate(scenario);
+  CHECK(size.samples >= static_cast<double>(trace.time.size()));
+  CHECK(size.samples <= static_cast<double>(trace.time.size()) + 1.0);
+  CHECK(size.columns == static_cast<double>(trace.channels.size()) + 1.0);
+  CHECK_NOTHROW(check_record_size(scenario, size.bytes()));
+  CHECK_THROWS_WITH(check_record_size(scenario, size.bytes() / 2),
+                    Catch::StartsWith("test.yaml:3:") && Catch::Contains("output.rate") &&
+                        Catch::Contains(byte_text(size.bytes())) &&
+                        Catch::Contains("--max-output-size"));
+  const Scenario from_set = scenario_from_text(physical_muscle_yaml(), {"output.rate=1 MHz"});
+  CHECK_THROWS_WITH(check_record_size(from_set, 2e9),
+                    Catch::Contains("--set output.rate=1 MHz") && Catch::Contains("2 GB"));
 }
 
 TEST_CASE("An attached effect is recorded inside its muscle's group, named instances by name") {

@@ -1,5 +1,8 @@
 #include "sim/io/hdf5_files.h"
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 #include <vector>
@@ -21,6 +24,26 @@ void create_parent_directories(const std::string& path) {
   std::error_code error;
   std::filesystem::create_directories(parent, error);
   if (error) throw std::runtime_error("cannot write " + path + ": " + error.message());
+}
+
+void prepare_output_file(const std::string& path) {
+  std::error_code error;
+  const auto status = std::filesystem::status(path, error);
+  if (std::filesystem::is_directory(status)) {
+    throw std::runtime_error("cannot write " + path + ": it is a directory");
+  }
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    throw std::runtime_error("cannot write " + path +
+                             ": it exists and is not a regular file (a device, pipe or socket)");
+  }
+  create_parent_directories(path);
+  const std::string partial = partial_path(path);
+  std::FILE* probe = std::fopen(partial.c_str(), "wb");
+  if (!probe) {
+    throw std::runtime_error("cannot create " + partial + " (written first, renamed to " + path +
+                             " when complete): " + std::strerror(errno));
+  }
+  std::fclose(probe);
 }
 
 H5::StrType utf8_text_type() {

@@ -22,6 +22,12 @@ std::string partial_path(const std::string& path);
 // Creates the directories above `path`; a failure is a std::runtime_error naming `path`.
 void create_parent_directories(const std::string& path);
 
+// Makes sure a file can be written at `path` through its partial file, before any work: `path`
+// must be a regular file or not exist (a directory or a device is refused), its directories are
+// created, and the partial file is created empty. A failure is a std::runtime_error naming the
+// file concerned and the system's reason ("Permission denied").
+void prepare_output_file(const std::string& path);
+
 // Variable-length UTF-8 text, the type of every string the records and reports write.
 H5::StrType utf8_text_type();
 // Pointers to `values`' characters, for writing them as variable-length texts.

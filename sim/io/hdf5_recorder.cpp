@@ -7,16 +7,28 @@
 
 namespace tcpmsim {
 
+namespace {
+// "<stem>.<ending>.h5" (the extension of `path` kept when it has one).
+std::string ended_path(const std::string& path, const std::string& ending) {
+  std::filesystem::path ended(path);
+  const std::string extension = ended.extension().string();
+  ended.replace_extension("." + ending + (extension.empty() ? std::string(".h5") : extension));
+  return ended.string();
+}
+}  // namespace
+
 std::string Hdf5Recorder::failed_path(const std::string& path) {
-  std::filesystem::path failed(path);
-  const std::string extension = failed.extension().string();
-  failed.replace_extension(".failed" + (extension.empty() ? std::string(".h5") : extension));
-  return failed.string();
+  return ended_path(path, "failed");
+}
+
+std::string Hdf5Recorder::interrupted_path(const std::string& path) {
+  return ended_path(path, "interrupted");
 }
 
 Hdf5Recorder::Hdf5Recorder(std::string path, const System& system, const Context& context,
                            const RecordMetadata& metadata, std::size_t chunk_samples)
     : path_(std::move(path)) {
+  prepare_output_file(path_);
   auto plan = std::make_shared<const RecordPlan>(
       plan_record(system, context, metadata, chunk_samples, columns_));
   std::size_t width = 1;
@@ -29,6 +41,7 @@ Hdf5Recorder::Hdf5Recorder(std::string path, const System& system, const Context
     buffers_[k].reserve(flush_rows_ * std::max<std::size_t>(1, columns_[k].size()));
 
   writer_ = std::make_unique<RecordWriter>(partial_path(path_), std::move(plan));
+  last_hand_over_ = std::chrono::steady_clock::now();
 }
 
 Hdf5Recorder::~Hdf5Recorder() {
@@ -45,7 +58,14 @@ void Hdf5Recorder::record(double time, std::span<const double> signals) {
     for (const int index : columns_[k])
       buffers_[k].push_back(signals[static_cast<std::size_t>(index)]);
   }
-  if (buffers_[0].size() >= flush_rows_) hand_over();
+  const std::size_t rows = buffers_[0].size();
+  if (rows >= flush_rows_) {
+    hand_over();
+  } else if (rows % 64 == 0 &&
+             std::chrono::duration<double>(std::chrono::steady_clock::now() - last_hand_over_)
+                     .count() >= kHandOverSeconds) {
+    hand_over();
+  }
 }
 
 void Hdf5Recorder::hand_over() {
@@ -55,25 +75,33 @@ void Hdf5Recorder::hand_over() {
     full[k].swap(buffers_[k]);
   }
   writer_->push(std::move(full));
+  last_hand_over_ = std::chrono::steady_clock::now();
 }
 
-void Hdf5Recorder::close_with(const std::string& status, const std::string& reason,
-                              const SolverStatistics& statistics) {
+void Hdf5Recorder::close_with(const RecordEnding& ending, const SolverStatistics& statistics) {
   // If closing throws, the writer stays, and the destructor removes the partial file.
-  writer_->close(std::move(buffers_), status, reason, statistics);
+  writer_->close(std::move(buffers_), ending, statistics);
   writer_.reset();
 }
 
 void Hdf5Recorder::finish(const SolverStatistics& statistics) {
-  close_with("complete", "", statistics);
+  close_with({"complete", "", 0.0}, statistics);
   std::filesystem::rename(partial_path(path_), path_);
 }
 
 std::string Hdf5Recorder::fail(const std::string& reason, const SolverStatistics& statistics) {
-  close_with("failed", reason, statistics);
+  close_with({"failed", reason, 0.0}, statistics);
   const std::string failed = failed_path(path_);
   std::filesystem::rename(partial_path(path_), failed);
   return failed;
+}
+
+std::string Hdf5Recorder::interrupt(const std::string& reason, double time_reached,
+                                    const SolverStatistics& statistics) {
+  close_with({"interrupted", reason, time_reached}, statistics);
+  const std::string interrupted = interrupted_path(path_);
+  std::filesystem::rename(partial_path(path_), interrupted);
+  return interrupted;
 }
 
 }  // namespace tcpmsim

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -25,7 +26,10 @@ namespace tcpmsim {
 // the run integrates, at most two buffers behind. The file is
 // written as
 // "<out>.partial" and renamed to <out> only when complete; a failed run is kept as "<out
-// stem>.failed.h5" with status = "failed" and the reason.
+// stem>.failed.h5" with status = "failed" and the reason, an interrupted one as "<out
+// stem>.interrupted.h5". The samples reach the file within a few seconds of wall time, and the
+// file is flushed, so that a run killed outright leaves a .partial that opens (see
+// recover_partial_record).
 class Hdf5Recorder final : public OutputSink {
  public:
   // The record of a run of `system` in `context` (prepared: its signals are the run's).
@@ -42,13 +46,21 @@ class Hdf5Recorder final : public OutputSink {
   void finish(const SolverStatistics& statistics);
   // Keeps what was written as the failed file; returns its path.
   std::string fail(const std::string& reason, const SolverStatistics& statistics);
+  // Keeps what was written, up to `time_reached`, as the interrupted file; returns its path.
+  std::string interrupt(const std::string& reason, double time_reached,
+                        const SolverStatistics& statistics);
 
   static std::string failed_path(const std::string& path);
+  // "<out stem>.interrupted.h5".
+  static std::string interrupted_path(const std::string& path);
 
  private:
   void hand_over();  // the full buffers to the writer
-  void close_with(const std::string& status, const std::string& reason,
-                  const SolverStatistics& statistics);
+  void close_with(const RecordEnding& ending, const SolverStatistics& statistics);
+  // Hands the buffers over early when this much wall time passed since the last hand-over, so
+  // that a slow run's samples reach the file (and its flushes) within seconds.
+  static constexpr double kHandOverSeconds = 2.0;
+  std::chrono::steady_clock::time_point last_hand_over_;
 
   std::string path_;
   static constexpr std::size_t kBufferedValues = std::size_t{1} << 20;

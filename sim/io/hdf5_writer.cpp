@@ -55,7 +55,7 @@ std::string leaf(const std::string& dataset) {
 }  // namespace
 
 Hdf5Writer::Hdf5Writer(std::string path) : path_(std::move(path)), file_(std::make_unique<File>()) {
-  create_parent_directories(path_);
+  prepare_output_file(path_);
   guarded(path_, [&] {
     H5::Exception::dontPrint();
     file_->file = H5::H5File(partial_path(path_), H5F_ACC_TRUNC);

@@ -79,6 +79,20 @@ void write_statistics(H5::H5Object& root, const SolverStatistics& statistics) {
   write_scalar(root, "samples", type, std::int64_t{statistics.output_samples});
 }
 
+}  // namespace
+
+void write_ending(H5::H5Object& root, const RecordEnding& ending) {
+  write_text_attribute(root, "status", ending.status);
+  if (ending.status == "interrupted") {
+    write_text_attribute(root, "interruption", ending.reason);
+    write_scalar(root, "time_reached", H5::PredType::NATIVE_DOUBLE, ending.time_reached);
+  } else if (!ending.reason.empty()) {
+    write_text_attribute(root, "failure", ending.reason);
+  }
+}
+
+namespace {
+
 // The group at `path` ("/muscle/maxwell_branch", "/inputs/b/drive.power"), created with the
 // groups above it where they do not exist yet.
 H5::Group group_at(H5::H5File& file, const std::string& path) {
@@ -167,14 +181,13 @@ void RecordWriter::push(std::vector<std::vector<double>> buffers) {
   changed_.notify_all();
 }
 
-void RecordWriter::close(std::vector<std::vector<double>> last, const std::string& status,
-                         const std::string& reason, const SolverStatistics& statistics) {
+void RecordWriter::close(std::vector<std::vector<double>> last, const RecordEnding& ending,
+                         const SolverStatistics& statistics) {
   {
     const std::lock_guard lock(mutex_);
     if (!last.empty() && !last[0].empty()) queue_.push_back(std::move(last));
     closing_ = true;
-    status_ = status;
-    reason_ = reason;
+    ending_ = ending;
     statistics_ = statistics;
   }
   changed_.notify_all();
@@ -256,6 +269,8 @@ void RecordWriter::create(const RecordPlan& plan) {
     write_description(group, input.description);
     if (!input.members.empty()) write_text_array_attribute(group, "members", input.members);
   }
+  file_.flush(H5F_SCOPE_GLOBAL);  // a run killed from here on leaves a file that opens
+  last_flush_ = std::chrono::steady_clock::now();
 }
 
 void RecordWriter::write(const std::vector<std::vector<double>>& buffers) {
@@ -276,13 +291,17 @@ void RecordWriter::write(const std::vector<std::vector<double>>& buffers) {
     dataset.write(buffers[k].data(), H5::PredType::NATIVE_DOUBLE, memory_space, file_space);
   }
   written_ = total;
+  const auto now = std::chrono::steady_clock::now();
+  if (std::chrono::duration<double>(now - last_flush_).count() >= kFlushSeconds) {
+    file_.flush(H5F_SCOPE_GLOBAL);
+    last_flush_ = now;
+  }
 }
 
 void RecordWriter::close_file() {
   const std::lock_guard lock(hdf5_mutex());
   H5::Group root = file_.openGroup("/");
-  write_text_attribute(root, "status", status_);
-  if (!reason_.empty()) write_text_attribute(root, "failure", reason_);
+  write_ending(root, ending_);
   write_statistics(root, statistics_);
   root.close();
   datasets_.clear();

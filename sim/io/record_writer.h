@@ -2,6 +2,7 @@
 
 #include <H5Cpp.h>
 
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -58,6 +59,17 @@ struct RecordPlan {
 RecordPlan plan_record(const System& system, const Context& context, const RecordMetadata& metadata,
                        std::size_t chunk_samples, std::vector<std::vector<int>>& columns);
 
+// How a record ended: status "complete", "failed" (reason: the solver's message, written as
+// `failure`) or "interrupted" (reason written as `interruption`, with `time_reached`).
+struct RecordEnding {
+  std::string status;
+  std::string reason;
+  double time_reached = 0.0;
+};
+
+// The root attributes of an ending: status, and failure or interruption and time_reached.
+void write_ending(H5::H5Object& root, const RecordEnding& ending);
+
 // The file side of a record, on a thread of its own: it creates what the plan says, then writes
 // the buffers handed to it (each dataset's rows, [0] the times) while the run goes on. At most
 // two wait, so memory stays bounded. The file is opened by the constructor, so that an
@@ -72,9 +84,9 @@ class RecordWriter {
 
   // Rethrows the writer's failure, if any; waits while two buffers wait.
   void push(std::vector<std::vector<double>> buffers);
-  // Writes the last buffers, the status and the statistics, and closes; rethrows a failure.
-  void close(std::vector<std::vector<double>> last, const std::string& status,
-             const std::string& reason, const SolverStatistics& statistics);
+  // Writes the last buffers, the ending and the statistics, and closes; rethrows a failure.
+  void close(std::vector<std::vector<double>> last, const RecordEnding& ending,
+             const SolverStatistics& statistics);
 
  private:
   void run(const RecordPlan& plan);
@@ -91,8 +103,12 @@ class RecordWriter {
   std::deque<std::vector<std::vector<double>>> queue_;
   bool closing_ = false;   // write the status and close after the queue
   bool aborting_ = false;  // drop everything
-  std::string status_, reason_;
+  RecordEnding ending_;
   SolverStatistics statistics_;
+  // The file is flushed at most kFlushSeconds of wall time after a write, so that a run killed
+  // outright leaves a .partial file that opens, with every sample up to the last flush.
+  static constexpr double kFlushSeconds = 1.0;
+  std::chrono::steady_clock::time_point last_flush_;
   std::exception_ptr error_;
   std::thread thread_;
 };
