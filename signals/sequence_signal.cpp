@@ -38,7 +38,7 @@ SignalDescription SequenceSignal::describe() const {
   std::vector<double> starts;
   for (std::size_t k = 0; k < segments_.size(); ++k) {
     starts.push_back(segments_[k].start);
-    description.parts.emplace_back("segment" + std::to_string(k), segments_[k].signal->describe());
+    description.parts.push_back({"segment" + std::to_string(k), segments_[k].signal->describe()});
   }
   description.arrays.emplace_back("starts", starts);
   return description;

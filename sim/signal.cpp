@@ -6,6 +6,11 @@
 
 namespace tcpmsim {
 
+bool SignalDescription::operator==(const SignalDescription& other) const {
+  return type == other.type && parameters == other.parameters && arrays == other.arrays &&
+         parts == other.parts;
+}
+
 double Signal::slope(double time) const {
   // One-sided, so that a breakpoint at `time` is not straddled; second order.
   const double h = 1e-6 * std::max(1.0, std::abs(time));

@@ -13,12 +13,22 @@
 namespace tcpmsim {
 
 // What a signal is, in enough detail to rebuild it offline (written to /inputs in the HDF5).
+struct SignalDescriptionPart;
+
 struct SignalDescription {
   std::string type;
   std::vector<std::pair<std::string, double>> parameters;
   std::vector<std::pair<std::string, std::vector<double>>> arrays;
-  std::vector<std::pair<std::string, SignalDescription>> parts;
-  bool operator==(const SignalDescription&) const = default;
+  std::vector<SignalDescriptionPart> parts;
+  // Member by member, in the source, where the parts are complete.
+  bool operator==(const SignalDescription&) const;
+};
+
+// A signal a composed signal is made of (a sequence's segment), by name.
+struct SignalDescriptionPart {
+  std::string name;
+  SignalDescription description;
+  bool operator==(const SignalDescriptionPart&) const = default;
 };
 
 class Signal;

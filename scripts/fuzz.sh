@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets with clang (build-fuzz: ASan + UBSan + coverage) and runs each
+# for a bounded time, seeded from the shipped inputs: the scenario loader from configs/ (and a
+# few --set seeds), the measured-data CSV reader and the coil-sequence reader from data files.
+# New inputs that widen coverage go to build-fuzz/corpus/<target>; a crash stops the script
+# with the crashing input saved as build-fuzz/crash-*, to become a regression test.
+#   scripts/fuzz.sh [SECONDS_PER_TARGET (default 60)] [-- extra libFuzzer options]
+#   scripts/fuzz.sh 0 -runs=1000000   # a million executions per target
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-60}
+shift || true
+[[ ${1:-} == -- ]] && shift
+scripts/install-deps.sh
+build=build-fuzz
+CC=clang CXX=clang++ cmake -S . -B $build -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTCPMSIM_FUZZ=ON \
+  -DTCPMSIM_BUILD_TESTS=OFF >/dev/null
+targets=(fuzz_scenario fuzz_measured_csv fuzz_coil_sequence)
+cmake --build $build -j"$(nproc)" --target "${targets[@]}"
+
+seeds() {  # the seed directory of a target, made afresh from the repository's inputs
+  local target=$1 dir=$build/seeds/$1
+  rm -rf "$dir" && mkdir -p "$dir"
+  case $target in
+    fuzz_scenario)
+      find configs -name '*.yaml' -exec cp --backup=numbered -t "$dir" {} +
+      printf '#set muscle.mechanics.k1=12 N/m\n' | cat - configs/ch7_identification.yaml >"$dir/set_parameter.yaml"
+      printf '#set load={type: hanging_mass, mass: 35 g}\n' | cat - configs/ch7_identification.yaml >"$dir/set_section.yaml"
+      printf '#set ..\n' | cat - configs/ch7_identification.yaml >"$dir/set_dots.yaml" ;;
+    fuzz_measured_csv)
+      cp tests/data/measured/*.csv "$dir" 2>/dev/null || true
+      printf 'time[s],power[W],deflection[mm],force[N]\n0,0.1,20,0.1\n0.0625,0.2,20.5,0.11\n' >"$dir/minimal.csv" ;;
+    fuzz_coil_sequence)
+      find data/coil-spring-inductance -name '*.csv' | head -n 5 | xargs -r cp -t "$dir" ;;
+  esac
+  echo "$dir"
+}
+
+for target in "${targets[@]}"; do
+  corpus=$build/corpus/$target
+  mkdir -p "$corpus"
+  seed_dir=$(seeds "$target")
+  echo "fuzz: $target for ${seconds} s ($(ls "$seed_dir" | wc -l) seeds, $(ls "$corpus" | wc -l) in the corpus)"
+  ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+    "$build/fuzz/$target" "$corpus" "$seed_dir" -max_total_time="$seconds" -max_len=65536 \
+    -timeout=10 -rss_limit_mb=2048 -artifact_prefix="$build/crash-$target-" -print_final_stats=1 "$@" \
+    2>&1 | grep -E "^(#[0-9]+ +DONE|stat::number_of_executed_units|stat::peak_rss|==[0-9]+==|SUMMARY|fuzz:)|Done [0-9]+ runs" || true
+  if compgen -G "$build/crash-$target-*" >/dev/null; then
+    echo "fuzz: $target crashed; the input: $(ls $build/crash-$target-*)" >&2
+    exit 1
+  fi
+done
+echo "fuzz: no crash"
