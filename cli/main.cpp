@@ -316,22 +316,22 @@ int report_errors(int (*command)(const Options&), const Options& options) {
   try {
     return command(options);
   } catch (const tcpmsim::ConfigError& error) {
-    std::cerr << error.what() << "\n";
+    std::cerr << tcpmsim::printable(error.what()) << "\n";
     return kConfigError;
   } catch (const tcpmsim::UnitError& error) {
-    std::cerr << "tcpmsim: " << error.what() << "\n";
+    std::cerr << "tcpmsim: " << tcpmsim::printable(error.what()) << "\n";
     return kConfigError;
   } catch (const tcpmsim::ParameterError& error) {
-    std::cerr << "tcpmsim: error: " << error.what() << "\n";
+    std::cerr << "tcpmsim: error: " << tcpmsim::printable(error.what()) << "\n";
     return kConfigError;
   } catch (const tcpmsim::UsageError& error) {
-    std::cerr << "tcpmsim: " << error.what() << "\n";
+    std::cerr << "tcpmsim: " << tcpmsim::printable(error.what()) << "\n";
     return kUsageError;
   } catch (const std::runtime_error& error) {
-    std::cerr << "tcpmsim: " << error.what() << "\n";
+    std::cerr << "tcpmsim: " << tcpmsim::printable(error.what()) << "\n";
     return kOutputError;
   } catch (const std::exception& error) {
-    std::cerr << "tcpmsim: internal error: " << error.what() << "\n";
+    std::cerr << "tcpmsim: internal error: " << tcpmsim::printable(error.what()) << "\n";
     return kInternalError;
   } catch (...) {  // a library's own exception type (HDF5's) that nothing turned into a message
     std::cerr << "tcpmsim: internal error: an unexpected exception\n";

@@ -224,3 +224,23 @@ TEST_CASE("YAML aliases that expand without bound are refused at their place (is
   CHECK_THAT(error_of(kValid + "? [a, b]\n: 3\n"),
              Catch::Contains("error: expected a key name, got a sequence"));
 }
+
+TEST_CASE("A control byte in a file is refused where it is, and never printed raw (issue 13)") {
+  const std::string nul(1, '\0');
+  // In a value (yaml-cpp said "unknown escape character"), in a comment (accepted), at the end.
+  CHECK(error_of(replaced(kValid, "name: test", "name: te" + nul + "st")) ==
+        "test.yaml:1:20: error: the file holds a NUL byte (binary or corrupted?)");
+  CHECK(error_of(replaced(kValid, "  mechanics:\n", "  mechanics:  # k" + nul + "\n")) ==
+        "test.yaml:10:18: error: the file holds a NUL byte (binary or corrupted?)");
+  CHECK(error_of(kValid + nul) ==
+        "test.yaml:19:1: error: the file holds a NUL byte (binary or corrupted?)");
+  CHECK(error_of(replaced(kValid, "name: test", "name: te\x01st")) ==
+        "test.yaml:1:20: error: the file holds the control character \\x01 (binary or "
+        "corrupted?)");
+  // Tabs, carriage returns and line feeds are text.
+  CHECK(config_error(replaced(kValid, "k1: 10 N/m", "k1: 10 N/m  # a\tb\r")) == "no error");
+  // Any message quoting input escapes what a terminal would act on.
+  CHECK(std::string(ConfigError({"f.yaml", 1, 2, {}}, "a\x1b[31m", "got '\x07\t'").what()) ==
+        "f.yaml:1:2: error: a\\x1b[31m: got '\\x07\\t'");
+  CHECK(printable(std::string("ok \x7f") + '\0') == "ok \\x7f\\x00");
+}

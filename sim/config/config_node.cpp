@@ -228,6 +228,27 @@ std::string read_text_file(const std::string& file) {
 
 namespace {
 
+// A text file holds no control bytes but tab, CR and LF: a NUL in a value used to read as an
+// escape error, one in a comment passed unnoticed.
+void reject_control_bytes(const std::string& text, const std::string& name) {
+  int line = 1, column = 1;
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 && c != '\t' && c != '\r' && c != '\n') {
+      throw ConfigError({name, line, column, {}}, "",
+                        byte == 0 ? "the file holds a NUL byte (binary or corrupted?)"
+                                  : "the file holds the control character " +
+                                        printable(std::string(1, c)) + " (binary or corrupted?)");
+    }
+    if (c == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+}
+
 std::shared_ptr<ConfigDocument> parse_document(const std::string& text, const std::string& name,
                                                const std::vector<std::string>& overrides,
                                                std::shared_ptr<const UnitSystem> units,
@@ -235,6 +256,7 @@ std::shared_ptr<ConfigDocument> parse_document(const std::string& text, const st
   auto document = std::make_shared<ConfigDocument>();
   document->file = name;
   document->units = std::move(units);
+  reject_control_bytes(text, name);
   try {
     document->root = YAML::Load(text);
   } catch (const YAML::ParserException& error) {

@@ -66,6 +66,15 @@ expect 3 "a key of a section is not an instance's name" -- "$tcpmsim" validate "
   --set "duration=1 s"
 contains "$work/err" "error: duration: unknown key 'duration'" "only plural sections' names expand"
 
+# Issue 13: one located message for each class of bad input.
+printf 'scenario: {name: x}  # a\0b\n' >"$work/nul.yaml"
+expect 3 "a NUL byte is a configuration error" -- "$tcpmsim" validate "$work/nul.yaml"
+contains "$work/err" "nul.yaml:1:25: error: the file holds a NUL byte (binary or corrupted?)" "the NUL byte is located"
+printf 'scenario: {name: "x\033[2J\001}\n' >"$work/control.yaml"
+expect 3 "a control character is a configuration error" -- "$tcpmsim" validate "$work/control.yaml"
+LC_ALL=C grep -q '[[:cntrl:]]' "$work/err" && { echo "FAIL: a raw control byte in the message"; cat -v "$work/err"; failures=$((failures + 1)); } || echo "ok: no raw control byte in the message"
+contains "$work/err" 'control.yaml:1:20: error: the file holds the control character \x1b' "the control character is escaped"
+
 expect 0 "run a short scenario" -- "$tcpmsim" run "$config" --set "scenario.duration=5 s" -o "$work/run.h5" --quiet
 [[ -s $work/run.h5 && ! -e $work/run.h5.partial ]] && echo "ok: complete record, no partial" || { echo "FAIL: record"; failures=$((failures + 1)); }
 
