@@ -134,7 +134,39 @@ TEST_CASE("A choice outside its options suggests the nearest one") {
 
 TEST_CASE("Broken YAML is reported at its position") {
   CHECK(error_of(replaced(kValid, "output: {rate: 10 Hz}", "output: {rate: 10 Hz")) ==
-        "test.yaml:3:7: error: invalid YAML: end of map flow not found");
+        "test.yaml:2:9: error: invalid YAML: unclosed flow mapping '{' opened here");
+  CHECK(error_of(replaced(kValid, "  mechanics:\n", "  mechanics:\n   bad indentation\n")) ==
+        "test.yaml:12:7: error: invalid YAML: illegal map value");
+}
+
+
+TEST_CASE("A bracket or quote never closed is reported where it opens (issue 13)") {
+  // yaml-cpp gives up lines later ("end of sequence flow not found" at the next section).
+  CHECK(error_of(replaced(kValid, "k1: 10 N/m", "k1: [10 N/m")) ==
+        "test.yaml:11:9: error: invalid YAML: unclosed flow sequence '[' opened here");
+  // Its closing quote is taken from a later string, whose text then follows it ("end of map not
+  // found" far below).
+  CHECK(error_of(replaced(replaced(kValid, "resistance: 10 ohm", "resistance: \"10 ohm"),
+                          "{mode: power,", "{mode: \"power\",")) ==
+        "test.yaml:15:15: error: invalid YAML: unterminated quoted string opened here");
+  // yaml-cpp takes a single-quoted string that runs to the end of the file for a string.
+  CHECK(error_of(replaced(kValid, "resistance: 10 ohm", "resistance: '10 ohm")) ==
+        "test.yaml:15:15: error: invalid YAML: unterminated quoted string opened here");
+  CHECK(error_of(replaced(kValid, "resistance: 10 ohm", "resistance: \"10 ohm")) ==
+        "test.yaml:15:15: error: invalid YAML: unterminated quoted string opened here");
+  // A closing bracket of the other kind closes nothing.
+  CHECK(error_of(replaced(kValid, "output: {rate: 10 Hz}", "output: {rate: 10 Hz]")) ==
+        "test.yaml:2:9: error: invalid YAML: unclosed flow mapping '{' opened here (']' at 2:21 "
+        "does not close it)");
+  // Quotes and brackets in comments and inside plain text open nothing.
+  CHECK(error_of(replaced(replaced(kValid, "heat_capacity: 0.5 J/K",
+                                   "heat_capacity: 0.5 J/K  # it's [not \"open"),
+                          "k1: 10 N/m", "k1: [10 N/m")) ==
+        "test.yaml:11:9: error: invalid YAML: unclosed flow sequence '[' opened here");
+  CHECK(error_of(
+            replaced(replaced(kValid, "heat_capacity: 0.5 J/K", "heat_capacity: it's a[1] \"test"),
+                     "k1: 10 N/m", "k1: [10 N/m")) ==
+        "test.yaml:11:9: error: invalid YAML: unclosed flow sequence '[' opened here");
 }
 
 TEST_CASE("A duplicated key is an error, not a silent overwrite") {

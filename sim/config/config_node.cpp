@@ -10,6 +10,8 @@
 #include <set>
 #include <sstream>
 
+#include "sim/config/yaml_scan.h"
+
 namespace tcpmsim {
 
 // ---------------------------------------------------------------------------------------------
@@ -249,6 +251,54 @@ void reject_control_bytes(const std::string& text, const std::string& name) {
   }
 }
 
+// The YAML of `text`; a syntax error is located where yaml-cpp stopped, or, when it stopped
+// because a flow collection or a quoted string was never closed, where that was opened.
+YAML::Node parse_yaml(const std::string& text, const std::string& name) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::ParserException& error) {
+    const int line = error.mark.line + 1, column = error.mark.column + 1;
+    if (const auto unclosed = find_unclosed(text);
+        unclosed && std::pair(unclosed->line, unclosed->column) <= std::pair(line, column)) {
+      throw ConfigError({name, unclosed->line, unclosed->column, {}}, "",
+                        "invalid YAML: " + unclosed->what);
+    }
+    throw ConfigError({name, line, column, {}}, "", "invalid YAML: " + error.msg);
+  }
+}
+
+// Whether a quoted scalar of the document starts at (line, column), 1-based.
+bool quoted_scalar_at(const YAML::Node& node, int line, int column) {
+  if (node.IsScalar()) {
+    const auto mark = node.Mark();
+    return node.Tag() == "!" && mark.line + 1 == line && mark.column + 1 == column;
+  }
+  if (node.IsMap()) {
+    for (const auto& entry : node) {
+      if (quoted_scalar_at(entry.first, line, column) ||
+          quoted_scalar_at(entry.second, line, column))
+        return true;
+    }
+  } else if (node.IsSequence()) {
+    for (const auto& element : node) {
+      if (quoted_scalar_at(element, line, column)) return true;
+    }
+  }
+  return false;
+}
+
+// yaml-cpp takes a single-quoted string left open to the end of the file for a string that holds
+// the rest of the file (the error then was a missing key): refuse it where it opens. Call after
+// reject_duplicate_keys, which bounds the walk.
+void reject_quote_open_to_end(const YAML::Node& root, const std::string& text,
+                              const std::string& name) {
+  const auto unclosed = find_unclosed(text);
+  if (!unclosed || !unclosed->to_end || !quoted_scalar_at(root, unclosed->line, unclosed->column))
+    return;
+  throw ConfigError({name, unclosed->line, unclosed->column, {}}, "",
+                    "invalid YAML: " + unclosed->what);
+}
+
 std::shared_ptr<ConfigDocument> parse_document(const std::string& text, const std::string& name,
                                                const std::vector<std::string>& overrides,
                                                std::shared_ptr<const UnitSystem> units,
@@ -257,12 +307,7 @@ std::shared_ptr<ConfigDocument> parse_document(const std::string& text, const st
   document->file = name;
   document->units = std::move(units);
   reject_control_bytes(text, name);
-  try {
-    document->root = YAML::Load(text);
-  } catch (const YAML::ParserException& error) {
-    throw ConfigError({name, error.mark.line + 1, error.mark.column + 1, {}}, "",
-                      "invalid YAML: " + error.msg);
-  }
+  document->root = parse_yaml(text, name);
   if (document->root.IsNull()) document->root = YAML::Node(YAML::NodeType::Map);
   if (!document->root.IsMap()) {
     const auto mark = document->root.Mark();
@@ -271,6 +316,7 @@ std::shared_ptr<ConfigDocument> parse_document(const std::string& text, const st
         "expected a mapping of sections at the top level, got a " + node_kind(document->root));
   }
   reject_duplicate_keys(document->root, name);
+  reject_quote_open_to_end(document->root, text, name);
   for (const auto& assignment : overrides) {
     const SourceLocation origin{name, 0, 0, "command line (--set " + assignment + ")"};
     const auto equals = assignment.find('=');

@@ -74,6 +74,10 @@ printf 'scenario: {name: "x\033[2J\001}\n' >"$work/control.yaml"
 expect 3 "a control character is a configuration error" -- "$tcpmsim" validate "$work/control.yaml"
 LC_ALL=C grep -q '[[:cntrl:]]' "$work/err" && { echo "FAIL: a raw control byte in the message"; cat -v "$work/err"; failures=$((failures + 1)); } || echo "ok: no raw control byte in the message"
 contains "$work/err" 'control.yaml:1:20: error: the file holds the control character \x1b' "the control character is escaped"
+sed "s/^    lambda_x: \(.*\)/    lambda_x: [\1/" "$config" >"$work/unclosed.yaml"
+expect 3 "an unclosed bracket is a configuration error" -- "$tcpmsim" validate "$work/unclosed.yaml"
+line=$(grep -n "lambda_x: \[" "$work/unclosed.yaml" | cut -d: -f1)
+contains "$work/err" "unclosed.yaml:$line:15: error: invalid YAML: unclosed flow sequence '[' opened here" "the error is where the bracket opens"
 
 expect 0 "run a short scenario" -- "$tcpmsim" run "$config" --set "scenario.duration=5 s" -o "$work/run.h5" --quiet
 [[ -s $work/run.h5 && ! -e $work/run.h5.partial ]] && echo "ok: complete record, no partial" || { echo "FAIL: record"; failures=$((failures + 1)); }
