@@ -170,8 +170,11 @@ TEST_CASE("A bracket or quote never closed is reported where it opens (issue 13)
 }
 
 TEST_CASE("A duplicated key is an error, not a silent overwrite") {
+  // At the second, with its full key path and where the first is (issue 13).
   CHECK(error_of(replaced(kValid, "    k2: 2.5 N/m\n", "    k2: 2.5 N/m\n    k2: 3 N/m\n")) ==
-        "test.yaml:13:5: error: k2: duplicate key 'k2'");
+        "test.yaml:13:5: error: muscle.mechanics.k2: duplicate key 'k2' (first given at 12:5)");
+  CHECK(error_of(replaced(kValid, "power: 0 W}", "power: 0 W, mode: duty}")) ==
+        "test.yaml:17:34: error: drive.mode: duplicate key 'mode' (first given at 17:9)");
 }
 
 TEST_CASE("Errors in command-line overrides point at the --set") {
@@ -256,6 +259,18 @@ TEST_CASE("YAML aliases that expand without bound are refused at their place (is
   CHECK_THAT(error_of(kValid + "? [a, b]\n: 3\n"),
              Catch::Contains("error: expected a key name, got a sequence"));
 }
+
+TEST_CASE("An empty file is reported as such at its start, not as a missing section (issue 13)") {
+  for (const std::string text : {"", "\n\n   \n", "# only\n  # comments\n", "---\n"}) {
+    INFO(text);
+    CHECK_THAT(error_of(text),
+               Catch::StartsWith("test.yaml:1:1: error: the file is empty (or holds only "
+                                 "comments); expected a mapping with 'scenario' and any of its "
+                                 "other sections (") &&
+                   Catch::Contains("output") && Catch::Contains("muscle"));
+  }
+}
+
 
 TEST_CASE("A control byte in a file is refused where it is, and never printed raw (issue 13)") {
   const std::string nul(1, '\0');

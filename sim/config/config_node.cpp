@@ -51,6 +51,7 @@ struct ConfigDocument {
   std::string file;
   YAML::Node root;
   YAML::Node resolved;
+  bool empty = false;  // the file holds no document (blank, or only comments)
   std::vector<Assignment> overrides;
   std::map<std::string, std::set<std::string>> known_keys;  // mapping path -> asked keys
   std::set<std::string> consumed;
@@ -107,6 +108,10 @@ std::string trim(std::string_view text) {
 constexpr int kMaxDepth = 64;
 constexpr long kMaxNodes = 1000000;
 
+std::string position_text(const YAML::Mark& mark) {
+  return std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1);
+}
+
 struct DocumentWalk {
   const std::string& file;
   long nodes = 0;
@@ -119,36 +124,44 @@ struct DocumentWalk {
                           "themselves?); a configuration needs neither");
   }
 
-  void visit(const YAML::Node& node, int depth) {
+  // A key is a name, given once in its mapping.
+  void visit_map(const YAML::Node& node, int depth, const std::string& path) {
+    std::map<std::string, YAML::Mark> seen;
+    for (const auto& entry : node) {
+      const auto mark = entry.first.Mark();
+      if (!entry.first.IsScalar()) {
+        throw ConfigError({file, mark.line + 1, mark.column + 1, {}}, path,
+                          "expected a key name, got a " +
+                              std::string(entry.first.IsMap() ? "mapping" : "sequence"));
+      }
+      const std::string key = entry.first.as<std::string>();
+      const auto [first, added] = seen.try_emplace(key, mark);
+      if (!added) {
+        throw ConfigError(
+            {file, mark.line + 1, mark.column + 1, {}}, join(path, key),
+            "duplicate key '" + key + "' (first given at " + position_text(first->second) + ")");
+      }
+      visit(entry.second, depth + 1, join(path, key));
+    }
+  }
+
+  void visit(const YAML::Node& node, int depth, const std::string& path) {
     if (depth > kMaxDepth)
       refuse(node, "the document nests deeper than " + std::to_string(kMaxDepth) + " levels");
     if (++nodes > kMaxNodes)
       refuse(node, "the document expands to more than " + std::to_string(kMaxNodes) + " values");
     if (node.IsMap()) {
-      std::set<std::string> seen;
-      for (const auto& entry : node) {
-        if (!entry.first.IsScalar()) {
-          const auto mark = entry.first.Mark();
-          throw ConfigError({file, mark.line + 1, mark.column + 1, {}}, "",
-                            "expected a key name, got a " +
-                                std::string(entry.first.IsMap() ? "mapping" : "sequence"));
-        }
-        const std::string key = entry.first.as<std::string>();
-        if (!seen.insert(key).second) {
-          const auto mark = entry.first.Mark();
-          throw ConfigError({file, mark.line + 1, mark.column + 1, {}}, key,
-                            "duplicate key '" + key + "'");
-        }
-        visit(entry.second, depth + 1);
-      }
+      visit_map(node, depth, path);
     } else if (node.IsSequence()) {
-      for (const auto& element : node) visit(element, depth + 1);
+      std::size_t index = 0;
+      for (const auto& element : node)
+        visit(element, depth + 1, path + "[" + std::to_string(index++) + "]");
     }
   }
 };
 
 void reject_duplicate_keys(const YAML::Node& node, const std::string& file) {
-  DocumentWalk{file}.visit(node, 0);
+  DocumentWalk{file}.visit(node, 0, "");
 }
 
 // Splits "a.b[2].c" into {"a", "b", "[2]", "c"}.
@@ -308,7 +321,10 @@ std::shared_ptr<ConfigDocument> parse_document(const std::string& text, const st
   document->units = std::move(units);
   reject_control_bytes(text, name);
   document->root = parse_yaml(text, name);
-  if (document->root.IsNull()) document->root = YAML::Node(YAML::NodeType::Map);
+  if (document->root.IsNull()) {
+    document->empty = true;
+    document->root = YAML::Node(YAML::NodeType::Map);
+  }
   if (!document->root.IsMap()) {
     const auto mark = document->root.Mark();
     throw ConfigError(
@@ -441,6 +457,8 @@ void ConfigNode::declare(std::initializer_list<std::string_view> keys) const {
 }
 
 void ConfigNode::fail_missing(std::string_view key) const {
+  // A file without a document misses every section: say that instead.
+  if (path_.empty() && document_->empty) fail_empty_file(key);
   // A misspelt key is the usual reason a required one is missing: point at it.
   if (node_.IsMap()) {
     std::vector<std::string> expected{std::string(key)};
@@ -457,6 +475,17 @@ void ConfigNode::fail_missing(std::string_view key) const {
     }
   }
   fail("missing required key '" + std::string(key) + "'");
+}
+
+void ConfigNode::fail_empty_file(std::string_view key) const {
+  std::string others;
+  for (const auto& section : document_->known_keys[path_]) {
+    if (section != key) others += (others.empty() ? "" : ", ") + section;
+  }
+  throw ConfigError({document_->file, 1, 1, {}}, "",
+                    "the file is empty (or holds only comments); expected a mapping with '" +
+                        std::string(key) + "'" +
+                        (others.empty() ? "" : " and any of its other sections (" + others + ")"));
 }
 
 ConfigNode ConfigNode::at(std::string_view key) const {

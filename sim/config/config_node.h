@@ -142,6 +142,7 @@ class ConfigNode {
   void record_default(std::string_view key, const std::string& value) const;
   bool present(std::string_view key) const;  // has() without marking the key optional
   [[noreturn]] void fail_missing(std::string_view key) const;
+  [[noreturn]] void fail_empty_file(std::string_view key) const;
 
   std::shared_ptr<ConfigDocument> document_;
   YAML::Node node_;

@@ -67,6 +67,9 @@ expect 3 "a key of a section is not an instance's name" -- "$tcpmsim" validate "
 contains "$work/err" "error: duration: unknown key 'duration'" "only plural sections' names expand"
 
 # Issue 13: one located message for each class of bad input.
+: >"$work/empty.yaml"
+expect 3 "an empty scenario file is a configuration error" -- "$tcpmsim" validate "$work/empty.yaml"
+contains "$work/err" "empty.yaml:1:1: error: the file is empty (or holds only comments); expected a mapping with 'scenario'" "the empty file is named as such, at its start"
 printf 'scenario: {name: x}  # a\0b\n' >"$work/nul.yaml"
 expect 3 "a NUL byte is a configuration error" -- "$tcpmsim" validate "$work/nul.yaml"
 contains "$work/err" "nul.yaml:1:25: error: the file holds a NUL byte (binary or corrupted?)" "the NUL byte is located"
