@@ -272,6 +272,55 @@ TEST_CASE("An empty file is reported as such at its start, not as a missing sect
 }
 
 
+TEST_CASE("A key of another variant of a section names the variants that take it (issue 13)") {
+  // A hanging mass's key under a load of type deflection: not a misspelling of itself.
+  CHECK(error_of(replaced(kValid, "deflection: 20 mm}", "deflection: 20 mm, mass: 35 g}")) ==
+        "test.yaml:18:45: error: load.mass: 'mass' is not used with type: deflection; it belongs "
+        "to type: hanging_mass (type: deflection takes bundle, deflection, load_cell_resolution, "
+        "muscle, muscles)");
+  // Every variant that takes it.
+  CHECK_THAT(
+      error_of(replaced(kValid, "deflection: 20 mm}", "deflection: 20 mm, damping: 1 N*s/m}")),
+      Catch::Contains("load.damping: 'damping' is not used with type: deflection; it "
+                      "belongs to type: hanging_mass or joint ("));
+  // A misspelling is matched against this variant's keys only: 'mass' is none of them.
+  CHECK(error_of(replaced(kValid, "deflection: 20 mm}", "deflection: 20 mm, mas: 35 g}")) ==
+        "test.yaml:18:45: error: load.mas: unknown key 'mas'; known keys here: bundle, "
+        "deflection, load_cell_resolution, muscle, muscles, type");
+  // Parts read by other kinds too: a reduced thermal force's key under the physical form.
+  CHECK_THAT(error_of(replaced(kValid, "reference_temperature: 20 degC}",
+                               "reference_temperature: 20 degC, kappa_c: 0.1 1/s}")),
+             Catch::StartsWith("test.yaml:9:") &&
+                 Catch::Contains("muscle.thermal_force.kappa_c: 'kappa_c' is not used with form: "
+                                 "physical; it belongs to form: reduced (form: physical takes "));
+  // The same from the command line, located at the --set.
+  CHECK(error_of(kValid, {"load.mass=1 kg"}) ==
+        "command line (--set load.mass=1 kg): error: load.mass: 'mass' is not used with type: "
+        "deflection; it belongs to type: hanging_mass (type: deflection takes bundle, "
+        "deflection, load_cell_resolution, muscle, muscles)");
+}
+
+
+TEST_CASE("Every error about a key a --set introduced names that --set (issue 13)") {
+  // The section 'foo' exists only because the --set wrote it: the file has no part in it.
+  CHECK_THAT(error_of(kValid, {"foo.bar=1"}),
+             Catch::StartsWith("command line (--set foo.bar=1): error: foo: unknown key 'foo'; "
+                               "known keys here: "));
+  CHECK(error_of(kValid, {"muscle.mechanics.colour.red=1"}) ==
+        "command line (--set muscle.mechanics.colour.red=1): error: muscle.mechanics.colour: "
+        "unknown key 'colour'; known keys here: damping, force_offset, k1, k2");
+  // A section a --set adds is the --set's when it lacks a key, too.
+  CHECK(error_of(kValid, {"drives.d2.muscle=muscle"}) ==
+        "command line (--set drives.d2.muscle=muscle): error: drives.d2: missing required key "
+        "'mode'");
+  // A key the file has stays the file's.
+  CHECK(error_of(replaced(kValid, "output: {rate: 10 Hz}", "output: {rate: 10 Hz, colour: blue}"),
+                 {"foo=1"}) ==
+        "test.yaml:2:23: error: output.colour: unknown key 'colour'; known keys here: compression, "
+        "compression_level, rate, start");
+}
+
+
 TEST_CASE("A control byte in a file is refused where it is, and never printed raw (issue 13)") {
   const std::string nul(1, '\0');
   // In a value (yaml-cpp said "unknown escape character"), in a comment (accepted), at the end.

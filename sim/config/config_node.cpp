@@ -53,6 +53,9 @@ struct ConfigDocument {
   YAML::Node resolved;
   bool empty = false;  // the file holds no document (blank, or only comments)
   std::vector<Assignment> overrides;
+  // Mappings a --set added on its way to its key ("foo" for --set foo.bar=1), with its text.
+  std::map<std::string, std::string> introduced;
+  std::map<std::string, Variant> variants;  // section path -> the kind its selector chose
   std::map<std::string, std::set<std::string>> known_keys;  // mapping path -> asked keys
   std::set<std::string> consumed;
   std::shared_ptr<const UnitSystem> units;
@@ -86,6 +89,25 @@ std::string join(std::string_view path, std::string_view key) {
 bool is_prefix_path(std::string_view prefix, std::string_view path) {
   if (!path.starts_with(prefix)) return false;
   return path.size() == prefix.size() || path[prefix.size()] == '.' || path[prefix.size()] == '[';
+}
+
+SourceLocation command_line(const std::string& file, const std::string& assignment) {
+  return {file, 0, 0, "command line (--set " + assignment + ")"};
+}
+
+// Where the value or key at `path` came from: the last --set that gave it or a section above it,
+// or that introduced it ("foo" of --set foo.bar=1); else its mark in the file.
+SourceLocation locate(const ConfigDocument& document, const std::string& path,
+                      const YAML::Mark& mark) {
+  for (auto assignment = document.overrides.rbegin(); assignment != document.overrides.rend();
+       ++assignment) {
+    if (is_prefix_path(assignment->path, path))
+      return command_line(document.file, assignment->text);
+  }
+  if (const auto found = document.introduced.find(path); found != document.introduced.end())
+    return command_line(document.file, found->second);
+  if (mark.is_null()) return {document.file, 0, 0, {}};
+  return {document.file, mark.line + 1, mark.column + 1, {}};
 }
 
 std::string node_kind(const YAML::Node& node) {
@@ -186,8 +208,19 @@ std::vector<std::string> split_path(const std::string& path) {
   return parts;
 }
 
+// The path of the first `count` parts: {"a", "[2]", "b"} -> "a[2].b".
+std::string joined(const std::vector<std::string>& parts, std::size_t count) {
+  std::string path;
+  for (std::size_t k = 0; k < count; ++k)
+    path += (k == 0 || parts[k].front() == '[' ? "" : ".") + parts[k];
+  return path;
+}
+
+// Sets `value` at parts[index...] below `node`; the mappings it adds on the way are listed in
+// `introduced` by their paths.
 void assign_at(YAML::Node node, const std::vector<std::string>& parts, std::size_t index,
-               const YAML::Node& value, const SourceLocation& origin, const std::string& path) {
+               const YAML::Node& value, const SourceLocation& origin, const std::string& path,
+               std::vector<std::string>& introduced) {
   const std::string& part = parts[index];
   const bool last = index + 1 == parts.size();
   if (part.front() == '[') {
@@ -202,7 +235,7 @@ void assign_at(YAML::Node node, const std::vector<std::string>& parts, std::size
     if (last) {
       node[element] = value;
     } else {
-      assign_at(node[element], parts, index + 1, value, origin, path);
+      assign_at(node[element], parts, index + 1, value, origin, path, introduced);
     }
     return;
   }
@@ -212,8 +245,11 @@ void assign_at(YAML::Node node, const std::vector<std::string>& parts, std::size
   if (last) {
     node[part] = value;
   } else {
-    if (!node[part]) node[part] = YAML::Node(YAML::NodeType::Map);
-    assign_at(node[part], parts, index + 1, value, origin, path);
+    if (!node[part]) {
+      node[part] = YAML::Node(YAML::NodeType::Map);
+      introduced.push_back(joined(parts, index + 1));
+    }
+    assign_at(node[part], parts, index + 1, value, origin, path, introduced);
   }
 }
 
@@ -312,6 +348,37 @@ void reject_quote_open_to_end(const YAML::Node& root, const std::string& text,
                     "invalid YAML: " + unclosed->what);
 }
 
+// Applies one --set to the document.
+void apply_override(ConfigDocument& document, const std::string& assignment,
+                    const std::vector<std::string>& instance_sections) {
+  const SourceLocation origin = command_line(document.file, assignment);
+  const auto equals = assignment.find('=');
+  if (equals == std::string::npos || equals == 0 || equals + 1 == assignment.size()) {
+    throw ConfigError(origin, "", "expected --set key.path=value");
+  }
+  const std::string key = trim(assignment.substr(0, equals));
+  // Names joined by single dots, each possibly indexed ("muscle.effects[0].stiffness").
+  bool empty_name = key.empty() || key.front() == '.' || key.back() == '.' ||
+                    key.find("..") != std::string::npos || key.front() == '[';
+  if (empty_name) {
+    throw ConfigError(origin, "",
+                      "expected --set key.path=value, the key path names joined by '.' (e.g. "
+                      "muscle.mechanics.k1); '" +
+                          key + "' has an empty name");
+  }
+  const std::string path = expand_instance_path(document.root, key, instance_sections);
+  YAML::Node value;
+  try {
+    value = YAML::Load(assignment.substr(equals + 1));
+  } catch (const YAML::ParserException& error) {
+    throw ConfigError(origin, path, "the value is not valid YAML: " + error.msg);
+  }
+  std::vector<std::string> introduced;
+  assign_at(document.root, split_path(path), 0, value, origin, path, introduced);
+  for (const auto& added : introduced) document.introduced.try_emplace(added, assignment);
+  document.overrides.push_back({path, assignment, value});
+}
+
 std::shared_ptr<ConfigDocument> parse_document(const std::string& text, const std::string& name,
                                                const std::vector<std::string>& overrides,
                                                std::shared_ptr<const UnitSystem> units,
@@ -333,32 +400,7 @@ std::shared_ptr<ConfigDocument> parse_document(const std::string& text, const st
   }
   reject_duplicate_keys(document->root, name);
   reject_quote_open_to_end(document->root, text, name);
-  for (const auto& assignment : overrides) {
-    const SourceLocation origin{name, 0, 0, "command line (--set " + assignment + ")"};
-    const auto equals = assignment.find('=');
-    if (equals == std::string::npos || equals == 0 || equals + 1 == assignment.size()) {
-      throw ConfigError(origin, "", "expected --set key.path=value");
-    }
-    const std::string key = trim(assignment.substr(0, equals));
-    // Names joined by single dots, each possibly indexed ("muscle.effects[0].stiffness").
-    bool empty_name = key.empty() || key.front() == '.' || key.back() == '.' ||
-                      key.find("..") != std::string::npos || key.front() == '[';
-    if (empty_name) {
-      throw ConfigError(origin, "",
-                        "expected --set key.path=value, the key path names joined by '.' (e.g. "
-                        "muscle.mechanics.k1); '" +
-                            key + "' has an empty name");
-    }
-    const std::string path = expand_instance_path(document->root, key, instance_sections);
-    YAML::Node value;
-    try {
-      value = YAML::Load(assignment.substr(equals + 1));
-    } catch (const YAML::ParserException& error) {
-      throw ConfigError(origin, path, "the value is not valid YAML: " + error.msg);
-    }
-    assign_at(document->root, split_path(path), 0, value, origin, path);
-    document->overrides.push_back({path, assignment, value});
-  }
+  for (const auto& assignment : overrides) apply_override(*document, assignment, instance_sections);
   document->resolved = YAML::Clone(document->root);
   return document;
 }
@@ -401,14 +443,7 @@ const UnitSystem& ConfigNode::units() const {
 }
 
 SourceLocation ConfigNode::location() const {
-  for (const auto& assignment : document_->overrides) {
-    if (is_prefix_path(assignment.path, path_)) {
-      return {document_->file, 0, 0, "command line (--set " + assignment.text + ")"};
-    }
-  }
-  const auto mark = node_.Mark();
-  if (mark.is_null()) return {document_->file, 0, 0, {}};
-  return {document_->file, mark.line + 1, mark.column + 1, {}};
+  return locate(*document_, path_, node_.Mark());
 }
 
 std::string ConfigNode::parameter_path() const {
@@ -467,9 +502,8 @@ void ConfigNode::fail_missing(std::string_view key) const {
       if (document_->consumed.count(join(path_, present))) continue;
       if (document_->known_keys[path_].count(present)) continue;  // a legitimate other key
       if (!closest_match(present, expected).empty()) {
-        const auto mark = entry.first.Mark();
         throw ConfigError(
-            {document_->file, mark.line + 1, mark.column + 1, {}}, join(path_, present),
+            locate(*document_, join(path_, present), entry.first.Mark()), join(path_, present),
             "unknown key '" + present + "' (did you mean '" + std::string(key) + "'?)");
       }
     }
@@ -722,43 +756,92 @@ std::pair<double, double> ConfigNode::interval(std::string_view key, std::string
 }
 
 namespace {
-void find_unknown(const ConfigDocument& document, const YAML::Node& node, const std::string& path) {
-  if (node.IsMap()) {
-    for (const auto& entry : node) {
-      const std::string key = entry.first.as<std::string>();
-      const std::string child = join(path, key);
-      if (!document.consumed.count(child)) {
-        const auto known = document.known_keys.find(path);
-        std::vector<std::string> candidates;
-        if (known != document.known_keys.end()) {
-          candidates.assign(known->second.begin(), known->second.end());
+
+std::string listed(const std::vector<std::string>& names, const std::string& separator = ", ") {
+  std::string text;
+  for (const auto& name : names) text += (text.empty() ? "" : separator) + name;
+  return text;
+}
+
+// The first key of the document that nobody asked for, explained: a key that another variant of
+// its section takes (a hanging mass's 'mass' under a load of type deflection) is named as such,
+// and a misspelling gets the nearest key that this section takes.
+class UnknownKeys {
+ public:
+  UnknownKeys(const ConfigDocument& document, const VariantKeys& variant_keys)
+      : document_(document), variant_keys_(variant_keys) {}
+
+  void visit(const YAML::Node& node, const std::string& path) const {
+    if (node.IsMap()) {
+      for (const auto& entry : node) {
+        const std::string key = entry.first.as<std::string>();
+        const std::string child = join(path, key);
+        if (!document_.consumed.count(child)) {
+          throw ConfigError(locate(document_, child, entry.first.Mark()), child,
+                            problem(path, key));
         }
-        const std::string suggestion = closest_match(key, candidates);
-        std::string problem = "unknown key '" + key + "'";
-        if (!suggestion.empty()) {
-          problem += " (did you mean '" + suggestion + "'?)";
-        } else if (!candidates.empty()) {
-          std::string listed;
-          for (const auto& candidate : candidates)
-            listed += (listed.empty() ? "" : ", ") + candidate;
-          problem += "; known keys here: " + listed;
-        }
-        SourceLocation location{
-            document.file, entry.first.Mark().line + 1, entry.first.Mark().column + 1, {}};
-        for (const auto& assignment : document.overrides) {
-          if (is_prefix_path(assignment.path, child))
-            location = {document.file, 0, 0, "command line (--set " + assignment.text + ")"};
-        }
-        throw ConfigError(location, child, problem);
+        visit(entry.second, child);
       }
-      find_unknown(document, entry.second, child);
-    }
-  } else if (node.IsSequence()) {
-    for (std::size_t i = 0; i < node.size(); ++i) {
-      find_unknown(document, node[i], path + "[" + std::to_string(i) + "]");
+    } else if (node.IsSequence()) {
+      for (std::size_t i = 0; i < node.size(); ++i)
+        visit(node[i], path + "[" + std::to_string(i) + "]");
     }
   }
-}
+
+ private:
+  std::string problem(const std::string& path, const std::string& key) const {
+    std::vector<std::string> candidates;
+    if (const auto known = document_.known_keys.find(path); known != document_.known_keys.end())
+      candidates.assign(known->second.begin(), known->second.end());
+    if (const auto variant = document_.variants.find(path);
+        variant != document_.variants.end() && variant_keys_) {
+      if (std::string other = of_another_variant(variant->second, key, candidates); !other.empty())
+        return other;
+    }
+    if (std::find(candidates.begin(), candidates.end(), key) != candidates.end())
+      return "'" + key + "' is not used with the other settings of this section";
+    std::string problem = "unknown key '" + key + "'";
+    if (const std::string suggestion = closest_match(key, candidates); !suggestion.empty()) {
+      problem += " (did you mean '" + suggestion + "'?)";
+    } else if (!candidates.empty()) {
+      problem += "; known keys here: " + listed(candidates);
+    }
+    return problem;
+  }
+
+  // The message for a key that only other kinds of the section's category take, or empty; the
+  // candidates lose the keys of other kinds that this one does not take.
+  std::string of_another_variant(const Variant& variant, const std::string& key,
+                                 std::vector<std::string>& candidates) const {
+    const auto keys = variant_keys_(variant.category);
+    const auto own = keys.find(variant.kind);
+    if (own == keys.end() || own->second.empty()) return {};
+    const auto takes = [&](const std::string& name) {
+      return name == variant.selector || own->second.count(name) > 0;
+    };
+    const auto kinds_taking = [&](const std::string& name) {
+      std::vector<std::string> kinds;
+      for (const auto& [kind, names] : keys) {
+        if (kind != variant.kind && names.count(name)) kinds.push_back(kind);
+      }
+      return kinds;
+    };
+    std::erase_if(candidates, [&](const std::string& candidate) {
+      return !takes(candidate) && !kinds_taking(candidate).empty();
+    });
+    const auto users = kinds_taking(key);
+    if (takes(key) || users.empty()) return {};
+    std::vector<std::string> own_keys(own->second.begin(), own->second.end());
+    std::erase(own_keys, variant.selector);
+    const std::string chosen = variant.selector + ": " + variant.kind;
+    return "'" + key + "' is not used with " + chosen + "; it belongs to " + variant.selector +
+           ": " + listed(users, " or ") + " (" + chosen + " takes " + listed(own_keys) + ")";
+  }
+
+  const ConfigDocument& document_;
+  const VariantKeys& variant_keys_;
+};
+
 }  // namespace
 
 std::vector<KeyRead> ConfigNode::reads() const {
@@ -779,8 +862,17 @@ void ConfigNode::describe_key(std::string_view key, const std::string& expected,
   if (!fallback.empty()) entry.fallback = fallback;
 }
 
-void ConfigNode::reject_unknown_keys() const {
-  find_unknown(*document_, document_->root, "");
+void ConfigNode::reject_unknown_keys(const VariantKeys& variant_keys) const {
+  UnknownKeys(*document_, variant_keys).visit(document_->root, "");
+}
+
+void ConfigNode::mark_variant(const std::string& category, const std::string& selector,
+                              const std::string& kind) const {
+  document_->variants[path_] = {category, selector, kind};
+}
+
+std::shared_ptr<const UnitSystem> ConfigNode::shared_units() const {
+  return document_->units;
 }
 
 std::string ConfigNode::resolved_yaml() const {

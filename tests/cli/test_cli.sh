@@ -77,6 +77,10 @@ printf 'scenario: {name: "x\033[2J\001}\n' >"$work/control.yaml"
 expect 3 "a control character is a configuration error" -- "$tcpmsim" validate "$work/control.yaml"
 LC_ALL=C grep -q '[[:cntrl:]]' "$work/err" && { echo "FAIL: a raw control byte in the message"; cat -v "$work/err"; failures=$((failures + 1)); } || echo "ok: no raw control byte in the message"
 contains "$work/err" 'control.yaml:1:20: error: the file holds the control character \x1b' "the control character is escaped"
+expect 3 "a --set that adds a section the scenario does not have" -- "$tcpmsim" validate "$config" --set foo.bar=1
+contains "$work/err" "command line (--set foo.bar=1): error: foo: unknown key 'foo'" "the error names the --set, not the file"
+expect 3 "a --set of a key another load type takes" -- "$tcpmsim" validate "$config" --set "load.mass=1 kg"
+contains "$work/err" "command line (--set load.mass=1 kg): error: load.mass: 'mass' is not used with type: deflection; it belongs to type: hanging_mass" "the error names the types that take the key"
 sed "s/^    lambda_x: \(.*\)/    lambda_x: [\1/" "$config" >"$work/unclosed.yaml"
 expect 3 "an unclosed bracket is a configuration error" -- "$tcpmsim" validate "$work/unclosed.yaml"
 line=$(grep -n "lambda_x: \[" "$work/unclosed.yaml" | cut -d: -f1)
