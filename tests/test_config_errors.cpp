@@ -76,31 +76,56 @@ TEST_CASE("A value of the wrong type says what was expected") {
 TEST_CASE("A quantity in the wrong unit is rejected with both units") {
   CHECK(error_of(replaced(kValid, "k1: 10 N/m", "k1: 10 N")) ==
         "test.yaml:11:9: error: muscle.mechanics.k1: wrong unit in '10 N': unit 'N' cannot be "
-        "converted to 'N/m'");
+        "converted to 'N/m'; expected a stiffness (force/length), e.g. N/m or N/mm");
   CHECK(error_of(replaced(kValid, "k1: 10 N/m", "k1: 10 blorps")) ==
         "test.yaml:11:9: error: muscle.mechanics.k1: wrong unit in '10 blorps': 'blorps' is not a "
-        "unit");
+        "unit; expected a stiffness (force/length), e.g. N/m or N/mm");
 }
 
 TEST_CASE("A unit is never taken for its reciprocal") {
   // udunits alone would invert these: 16 s as a rate of 1/16 Hz, mm/N as a stiffness.
   CHECK(error_of(replaced(kValid, "rate: 10 Hz", "rate: 16 s")) ==
         "test.yaml:2:16: error: output.rate: wrong unit in '16 s': unit 's' cannot be converted "
-        "to 'Hz'");
+        "to 'Hz'; expected a frequency (1/time), e.g. Hz or 1/s");
   CHECK(error_of(replaced(kValid, "duration: 10 s", "duration: 400 Hz")) ==
         "test.yaml:1:34: error: scenario.duration: wrong unit in '400 Hz': unit 'Hz' cannot be "
-        "converted to 's'");
+        "converted to 's'; expected a time, e.g. s or ms");
   CHECK(error_of(replaced(kValid, "k1: 10 N/m", "k1: 92.6 mm/N")) ==
         "test.yaml:11:9: error: muscle.mechanics.k1: wrong unit in '92.6 mm/N': unit 'mm/N' cannot "
-        "be converted to 'N/m'");
+        "be converted to 'N/m'; expected a stiffness (force/length), e.g. N/m or N/mm");
   CHECK_NOTHROW(scenario_from_text(replaced(kValid, "rate: 10 Hz", "rate: 10 1/s")));
 }
 
 TEST_CASE("A dimensional quantity without a unit is rejected") {
   CHECK(error_of(replaced(kValid, "heat_capacity: 0.5 J/K", "heat_capacity: 0.5")) ==
-        "test.yaml:6:20: error: muscle.thermal.heat_capacity: '0.5' has no unit; expected a "
-        "quantity in J/K "
-        "(or a unit convertible to it), e.g. '0.5 J/K'");
+        "test.yaml:6:20: error: muscle.thermal.heat_capacity: '0.5' has no unit; expected a heat "
+        "capacity (energy/temperature), e.g. J/K or mJ/K");
+}
+
+TEST_CASE("A unit hint names what the key measures, never the bare number in SI (issue 13)") {
+  // '10.8e-3 N/m' would pin a number meant in N/mm to N/m, 1000 times off.
+  CHECK(error_of(replaced(kValid, "k1: 10 N/m", "k1: 10.8e-3")) ==
+        "test.yaml:11:9: error: muscle.mechanics.k1: '10.8e-3' has no unit; expected a stiffness "
+        "(force/length), e.g. N/m or N/mm");
+  // A temperature: the offset unit first. 'C' is the coulomb.
+  CHECK(error_of(replaced(kValid, "ambient_temperature: 20 degC", "ambient_temperature: 23")) ==
+        "test.yaml:8:26: error: muscle.thermal.ambient_temperature: '23' has no unit; expected a "
+        "temperature, e.g. degC or K");
+  CHECK(error_of(replaced(kValid, "ambient_temperature: 20 degC", "ambient_temperature: 23 C")) ==
+        "test.yaml:8:26: error: muscle.thermal.ambient_temperature: wrong unit in '23 C': unit "
+        "'C' cannot be converted to 'K'; expected a temperature, e.g. degC or K");
+  // The hint comes from the expected unit's dimension, however the unit is spelt.
+  const UnitSystem& units = *shared_units();
+  CHECK(units.describe_dimension("N/m") == "a stiffness (force/length), e.g. N/m or N/mm");
+  CHECK(units.describe_dimension("kg/s^2") == "a stiffness (force/length), e.g. N/m or N/mm");
+  CHECK(units.describe_dimension("degC") == "a temperature, e.g. degC or K");
+  CHECK(units.describe_dimension("1/s") == "a frequency (1/time), e.g. Hz or 1/s");
+  CHECK(units.describe_dimension("rad") == "an angle, e.g. rad or deg");
+  // A dimension the table does not name keeps the unit itself.
+  CHECK(units.describe_dimension("s/H").empty());
+  CHECK(error_of(kValid, {"muscle.mechanics.k1=10.8e-3"}) ==
+        "command line (--set muscle.mechanics.k1=10.8e-3): error: muscle.mechanics.k1: '10.8e-3' "
+        "has no unit; expected a stiffness (force/length), e.g. N/m or N/mm");
 }
 
 TEST_CASE("Non-physical values are rejected") {
@@ -138,7 +163,6 @@ TEST_CASE("Broken YAML is reported at its position") {
   CHECK(error_of(replaced(kValid, "  mechanics:\n", "  mechanics:\n   bad indentation\n")) ==
         "test.yaml:12:7: error: invalid YAML: illegal map value");
 }
-
 
 TEST_CASE("A bracket or quote never closed is reported where it opens (issue 13)") {
   // yaml-cpp gives up lines later ("end of sequence flow not found" at the next section).
@@ -271,7 +295,6 @@ TEST_CASE("An empty file is reported as such at its start, not as a missing sect
   }
 }
 
-
 TEST_CASE("A key of another variant of a section names the variants that take it (issue 13)") {
   // A hanging mass's key under a load of type deflection: not a misspelling of itself.
   CHECK(error_of(replaced(kValid, "deflection: 20 mm}", "deflection: 20 mm, mass: 35 g}")) ==
@@ -300,7 +323,6 @@ TEST_CASE("A key of another variant of a section names the variants that take it
         "deflection, load_cell_resolution, muscle, muscles)");
 }
 
-
 TEST_CASE("Every error about a key a --set introduced names that --set (issue 13)") {
   // The section 'foo' exists only because the --set wrote it: the file has no part in it.
   CHECK_THAT(error_of(kValid, {"foo.bar=1"}),
@@ -319,7 +341,6 @@ TEST_CASE("Every error about a key a --set introduced names that --set (issue 13
         "test.yaml:2:23: error: output.colour: unknown key 'colour'; known keys here: compression, "
         "compression_level, rate, start");
 }
-
 
 TEST_CASE("A control byte in a file is refused where it is, and never printed raw (issue 13)") {
   const std::string nul(1, '\0');

@@ -582,16 +582,24 @@ double ConfigNode::as_quantity(std::string_view si_unit, const ValueCheck& check
          "'");
   }
   const std::string unit = trim(std::string_view(rest, static_cast<std::size_t>(end - rest)));
+  // What the key measures with units a user would write, never the number in the SI unit: a
+  // bare number may be meant in another unit (N/mm for N/m) and be 1000 times off.
   if (unit.empty() && !dimensionless) {
-    fail("'" + text + "' has no unit; expected a quantity in " + std::string(si_unit) +
-         " (or a unit convertible to it), e.g. '" + trimmed + " " + std::string(si_unit) + "'");
+    const std::string dimension = units().describe_dimension(si_unit);
+    fail("'" + text + "' has no unit; expected " +
+         (dimension.empty()
+              ? "a quantity in " + std::string(si_unit) + " (or a unit convertible to it)"
+              : dimension));
   }
   if (!unit.empty()) {
     try {
       value = units().convert(value, unit, si_unit);
     } catch (const UnitError& problem) {
+      const std::string dimension = dimensionless ? "" : units().describe_dimension(si_unit);
       fail("wrong unit in '" + text + "': " + problem.what() +
-           (dimensionless ? " (expected a dimensionless number)" : ""));
+           (dimensionless       ? " (expected a dimensionless number)"
+            : dimension.empty() ? ""
+                                : "; expected " + dimension));
     }
   }
   if (std::string problem = check.problem(value, si_unit, "'" + text + "'"); !problem.empty())
