@@ -135,6 +135,11 @@ contains "$work/err" "spring-forces takes coil-spring scenarios with an inductan
 [[ ! -e $work/sf.h5 ]] && echo "ok: nothing written for the wrong kind" || { echo "FAIL: output for the wrong kind"; failures=$((failures + 1)); }
 expect 2 "coil-fit with a missing data directory is a usage error" -- "$tcpmsim" coil-fit \
   "$source_dir/configs/springs/s1.yaml" --data "$work/none"
+# Issue 13: control-tasks on a coil spring blamed its own calibration --set; a usage error now.
+expect 2 "control-tasks on a coil-spring scenario is a usage error" -- "$tcpmsim" control-tasks \
+  "$source_dir/configs/ch4/sa_harmonic_first.yaml" -o "$work/ct.h5"
+contains "$work/err" "control-tasks takes the chapter-7 self-sensing control scenarios (configs/ch7_control/*.yaml, configs/pair/*.yaml); $source_dir/configs/ch4/sa_harmonic_first.yaml is not one" "the wrong-kind error names the file and what the command takes"
+[[ ! -e $work/ct.h5 ]] && echo "ok: nothing written for the wrong kind" || { echo "FAIL: control-tasks output for the wrong kind"; failures=$((failures + 1)); }
 
 # fit: a measurement (the chapter-7 bench, simulated), a model replaying it, the report.
 discover="$source_dir/configs/discover"
