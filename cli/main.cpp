@@ -415,11 +415,10 @@ int main(int argc, char** argv) {
                    "Thesis Tables 2.2/2.3 and the ch. 3 comparison from measured coil-spring data",
                    {"springs", "Spring files (YAML)", options.coil_fit.spring_files},
                    options.coil_fit.output, "results/coil_fit.h5", options.coil_fit.quiet);
-  options.coil_fit.data_directory = "data/coil-spring-inductance";
   coil_fit_command
       ->add_option("--data", options.coil_fit.data_directory,
-                   "Directory of the sequence files <name>.csv (default: the thesis' data, "
-                   "data/coil-spring-inductance)")
+                   "Directory of the sequence files <name>.csv (default: the one each spring "
+                   "file names under 'data', from that file's directory: the thesis' data)")
       ->check(CLI::ExistingDirectory);
 
   CLI::App* spring_forces_command = add_analysis(

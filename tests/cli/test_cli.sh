@@ -140,6 +140,17 @@ expect 2 "control-tasks on a coil-spring scenario is a usage error" -- "$tcpmsim
   "$source_dir/configs/ch4/sa_harmonic_first.yaml" -o "$work/ct.h5"
 contains "$work/err" "control-tasks takes the chapter-7 self-sensing control scenarios (configs/ch7_control/*.yaml, configs/pair/*.yaml); $source_dir/configs/ch4/sa_harmonic_first.yaml is not one" "the wrong-kind error names the file and what the command takes"
 [[ ! -e $work/ct.h5 ]] && echo "ok: nothing written for the wrong kind" || { echo "FAIL: control-tasks output for the wrong kind"; failures=$((failures + 1)); }
+expect 3 "coil-fit on a muscle scenario is a configuration error" -- "$tcpmsim" coil-fit "$config" -o "$work/cf.h5"
+contains "$work/err" "$config:" "the coil-fit error names the file"
+contains "$work/err" "missing required key 'coil_spring'" "the coil-fit error says what the file lacks"
+# The spring file names its data beside it: coil-fit runs from any directory (issue 13).
+expect 0 "coil-fit finds the thesis' data from another working directory" -- \
+  bash -c 'cd "$1" && "$2" coil-fit "$3" -o "$1/coil_fit.h5" --quiet' _ "$work" "$tcpmsim" \
+  "$source_dir/configs/springs/s1.yaml"
+[[ -s $work/coil_fit.h5 ]] && echo "ok: coil-fit wrote its file" || { echo "FAIL: no coil_fit.h5"; failures=$((failures + 1)); }
+expect 2 "an explicit --data stays relative to the working directory" -- \
+  bash -c 'cd "$1" && "$2" coil-fit "$3" --data data/coil-spring-inductance -o "$1/none.h5"' _ \
+  "$work" "$tcpmsim" "$source_dir/configs/springs/s1.yaml"
 
 # fit: a measurement (the chapter-7 bench, simulated), a model replaying it, the report.
 discover="$source_dir/configs/discover"
