@@ -118,7 +118,8 @@ std::vector<SequenceAnalysis> analyse_coil_springs(const std::vector<CoilSpring>
     std::vector<CoilSequence> kept;
     for (const auto& entry : spring.sequences) {
       const std::filesystem::path file =
-          std::filesystem::path(data_directory) / (entry.name + ".csv");
+          std::filesystem::path(data_directory.empty() ? spring.data_directory : data_directory) /
+          (entry.name + ".csv");
       if (!std::filesystem::is_regular_file(file)) {
         throw ConfigError(entry.location, "coil_spring.sequences",
                           "no data file '" + file.string() + "' for sequence '" + entry.name + "'");

@@ -43,7 +43,8 @@ struct SequenceAnalysis {
 // measured lengths; deflection from the measured mean inductance by the inverse fit or, for the
 // theoretical models, by linear inter/extrapolation in a 25-point table over
 // Lc linspace(1, 1.55, 25); RMSE relative to the deflection range. Sequence files are
-// <data_directory>/<name>.csv; a missing one is reported at the YAML line that names it.
+// <data_directory>/<name>.csv, or with an empty `data_directory` in each spring's own
+// (CoilSpring::data_directory); a missing one is reported at the YAML line that names it.
 std::vector<SequenceAnalysis> analyse_coil_springs(const std::vector<CoilSpring>& springs,
                                                    const std::string& data_directory);
 

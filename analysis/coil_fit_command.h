@@ -11,7 +11,7 @@ namespace tcpmsim::analysis {
 
 struct CoilFitOptions {
   std::vector<std::string> spring_files;  // configs/springs/s1.yaml ...
-  std::string data_directory;             // holds <sequence>.csv
+  std::string data_directory;             // holds <sequence>.csv; empty: each spring's own
   std::string output;                     // HDF5; empty: results/coil_fit.h5
   bool quiet = false;                     // no tables on `out`
 };

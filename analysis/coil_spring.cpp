@@ -1,14 +1,25 @@
 #include "analysis/coil_spring.h"
 
 #include <algorithm>
+#include <filesystem>
 
 namespace tcpmsim::analysis {
+
+namespace {
+// The spring's `data` directory, or the spring file's own.
+std::string data_directory_of(const ConfigNode& node) {
+  if (const auto data = node.find("data")) return file_named_by(*data);
+  const std::string file = node.location().file;
+  const std::string directory = std::filesystem::path(file).parent_path().string();
+  return directory.empty() ? "." : directory;
+}
+}  // namespace
 
 CoilSpring CoilSpring::from_config(const ConfigNode& root) {
   root.declare({"coil_spring"});
   const ConfigNode node = root.at("coil_spring");
   node.declare({"name", "wire_diameter", "outer_diameter", "body_length", "turns", "sequences",
-                "calibration"});
+                "calibration", "data"});
   CoilSpring spring;
   spring.source = node.location().file;
   spring.name = node.text("name");
@@ -49,6 +60,7 @@ CoilSpring CoilSpring::from_config(const ConfigNode& root) {
       calibration->fail("expected one of the spring's sequences, got '" + spring.calibration + "'");
     }
   }
+  spring.data_directory = data_directory_of(node);
   root.reject_unknown_keys();
   return spring;
 }

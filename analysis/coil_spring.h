@@ -25,6 +25,9 @@ struct CoilSpring {
   };
   std::vector<Sequence> sequences;
   std::string calibration;  // the sequence whose fit (2.14) the others reuse
+  // Where the sequences' files <name>.csv are: the spring file's `data`, taken from the spring
+  // file's directory like any file a configuration names; default that directory itself.
+  std::string data_directory;
 
   double radius() const { return 0.5 * (outer_diameter - wire_diameter); }  // r = Dm / 2
   double coil_length() const { return body_length - wire_diameter; }        // Lc = Lb - delta

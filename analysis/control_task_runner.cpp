@@ -34,7 +34,7 @@ const T& required(const Scenario& scenario, const std::string& what) {
   throw UsageError(
       "control-tasks takes the chapter-7 self-sensing control scenarios "
       "(configs/ch7_control/*.yaml, configs/pair/*.yaml); " +
-      scenario.source + " has no " + what);
+      scenario.source + " is not one: it has no " + what);
 }
 
 // The estimator's calibration offsets (7.3.4), as run parameters.
@@ -58,6 +58,10 @@ PreparedTask prepare(const std::string& config, const ControlTaskSettings& setti
                      const std::shared_ptr<const UnitSystem>& units) {
   const auto seconds = [](double s) { return "scenario.duration=" + std::to_string(s) + " s"; };
   PreparedTask prepared{config, {}, {}, load_scenario(config, settings.overrides, units)};
+  // Before the calibration runs are loaded: their settings (a held deflection) fit only such a
+  // scenario, and an error in them would blame a --set the user never gave.
+  required<PidController>(prepared.task, "controller");
+  required<SelfSensingEstimator>(prepared.task, "self-sensing estimator");
   if (settings.calibrate) {
     prepared.deflection_calibration =
         load_scenario(config,

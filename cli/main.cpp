@@ -345,22 +345,22 @@ int report_errors(int (*command)(const Options&), const Options& options) {
   try {
     return command(options);
   } catch (const tcpmsim::ConfigError& error) {
-    std::cerr << error.what() << "\n";
+    std::cerr << tcpmsim::printable(error.what()) << "\n";
     return kConfigError;
   } catch (const tcpmsim::UnitError& error) {
-    std::cerr << "tcpmsim: " << error.what() << "\n";
+    std::cerr << "tcpmsim: " << tcpmsim::printable(error.what()) << "\n";
     return kConfigError;
   } catch (const tcpmsim::ParameterError& error) {
-    std::cerr << "tcpmsim: error: " << error.what() << "\n";
+    std::cerr << "tcpmsim: error: " << tcpmsim::printable(error.what()) << "\n";
     return kConfigError;
   } catch (const tcpmsim::UsageError& error) {
-    std::cerr << "tcpmsim: " << error.what() << "\n";
+    std::cerr << "tcpmsim: " << tcpmsim::printable(error.what()) << "\n";
     return kUsageError;
   } catch (const std::runtime_error& error) {
-    std::cerr << "tcpmsim: " << error.what() << "\n";
+    std::cerr << "tcpmsim: " << tcpmsim::printable(error.what()) << "\n";
     return kOutputError;
   } catch (const std::exception& error) {
-    std::cerr << "tcpmsim: internal error: " << error.what() << "\n";
+    std::cerr << "tcpmsim: internal error: " << tcpmsim::printable(error.what()) << "\n";
     return kInternalError;
   } catch (...) {  // a library's own exception type (HDF5's) that nothing turned into a message
     std::cerr << "tcpmsim: internal error: an unexpected exception\n";
@@ -458,11 +458,10 @@ int main(int argc, char** argv) {
                    "Thesis Tables 2.2/2.3 and the ch. 3 comparison from measured coil-spring data",
                    {"springs", "Spring files (YAML)", options.coil_fit.spring_files},
                    options.coil_fit.output, "results/coil_fit.h5", options.coil_fit.quiet);
-  options.coil_fit.data_directory = "data/coil-spring-inductance";
   coil_fit_command
       ->add_option("--data", options.coil_fit.data_directory,
-                   "Directory of the sequence files <name>.csv (default: the thesis' data, "
-                   "data/coil-spring-inductance)")
+                   "Directory of the sequence files <name>.csv (default: the one each spring "
+                   "file names under 'data', from that file's directory: the thesis' data)")
       ->check(CLI::ExistingDirectory);
 
   CLI::App* spring_forces_command = add_analysis(

@@ -21,10 +21,10 @@ struct Held {
   MuscleFacts facts;
 };
 
+// The keys every load that holds muscles takes; each kind declares its own besides (a key of
+// another kind is then no suggestion here).
 std::vector<Held> held_muscles(const ConfigNode& node, ScenarioBuilder& build) {
-  node.declare({"type", "muscle", "muscles", "bundle", "deflection", "force", "mass", "gravity",
-                "damping", "initial_deflection", "initial_velocity", "load_cell_resolution",
-                "position_resolution"});
+  node.declare({"type", "muscle", "muscles", "bundle"});
   std::vector<Held> held;
   if (const auto bundle = node.find("bundle")) {
     for (const char* other : {"muscle", "muscles"}) {
@@ -63,6 +63,7 @@ void check_deflection_range(const ConfigNode& node, const Signal& deflection, co
 
 void build_imposed_deflection(const ConfigNode& node, const std::string& name,
                               ScenarioBuilder& build) {
+  node.declare({"deflection", "load_cell_resolution"});
   const auto muscles = held_muscles(node, build);
   SystemBuilder& system = build.system();
   const ConfigNode signal_node = node.at("deflection");
@@ -79,6 +80,7 @@ void build_imposed_deflection(const ConfigNode& node, const std::string& name,
 }
 
 void build_imposed_force(const ConfigNode& node, const std::string& name, ScenarioBuilder& build) {
+  node.declare({"force", "position_resolution"});
   const auto muscles = held_muscles(node, build);
   if (muscles.size() > 1) {
     node.fail(
@@ -107,6 +109,8 @@ double static_balance(double weight, const std::vector<RestingMuscle>& muscles) 
 }
 
 void build_hanging_mass(const ConfigNode& node, const std::string& name, ScenarioBuilder& build) {
+  node.declare({"mass", "gravity", "damping", "initial_deflection", "initial_velocity",
+                "load_cell_resolution"});
   const auto muscles = held_muscles(node, build);
   std::vector<RestingMuscle> as_built;
   for (const auto& muscle : muscles) as_built.push_back(muscle.facts.resting);

@@ -69,24 +69,38 @@ ExampleScenario::~ExampleScenario() {
   if (!directory_.empty()) std::filesystem::remove_all(directory_, ignored);
 }
 
+namespace {
+// What one example reads under its kind's section: each read with its path relative to the
+// section ("deflection", "mechanics.k1").
+std::vector<KeyRead> example_reads(const KindRegistry& kinds, const Kind& kind,
+                                   const KindExample& example,
+                                   std::shared_ptr<const UnitSystem> units) {
+  const ExampleScenario where(example, kind.name + "_example.yaml");
+  const ConfigNode root = ConfigNode::load_text(example.text, where.name(), {}, units);
+  build_scenario(root, kinds);
+  std::vector<KeyRead> reads;
+  for (KeyRead read : root.reads()) {
+    if (!under(read.path, example.node)) continue;
+    read.path = read.path.substr(example.node.size() + 1);
+    reads.push_back(std::move(read));
+  }
+  return reads;
+}
+}  // namespace
+
 std::vector<KindKey> kind_keys(const KindRegistry& kinds, const Kind& kind,
                                std::shared_ptr<const UnitSystem> units) {
   std::vector<KindKey> keys;
   std::map<std::string, std::size_t> seen;
   for (const auto& example : kind.examples) {
-    const ExampleScenario where(example, kind.name + "_example.yaml");
-    const ConfigNode root = ConfigNode::load_text(example.text, where.name(), {}, units);
-    build_scenario(root, kinds);
-    const auto reads = root.reads();
     std::vector<std::string> parts;  // sections below this one that another kind reads
-    for (const auto& read : reads) {
-      if (!under(read.path, example.node)) continue;
+    for (const auto& read : example_reads(kinds, kind, example, units)) {
       bool inside_part = false;
       for (const auto& part : parts) inside_part = inside_part || under(read.path, part);
       if (inside_part) continue;
       if (read.part) parts.push_back(read.path);
       if (read.expected.empty()) continue;
-      const std::string key = generic(read.path.substr(example.node.size() + 1));
+      const std::string key = generic(read.path);
       if (key == kinds.category(kind.category).selector) continue;  // said by the category
       const auto [found, added] = seen.try_emplace(key, keys.size());
       if (added) {
@@ -97,6 +111,25 @@ std::vector<KindKey> kind_keys(const KindRegistry& kinds, const Kind& kind,
     }
   }
   return keys;
+}
+
+std::set<std::string> kind_key_names(const KindRegistry& kinds, const Kind& kind,
+                                     std::shared_ptr<const UnitSystem> units) {
+  std::set<std::string> names;
+  for (const auto& example : kind.examples) {
+    for (const auto& read : example_reads(kinds, kind, example, units))
+      names.insert(read.path.substr(0, read.path.find_first_of(".[")));
+  }
+  return names;
+}
+
+VariantKeys variant_keys(const KindRegistry& kinds, std::shared_ptr<const UnitSystem> units) {
+  return [&kinds, units](const std::string& category) {
+    std::map<std::string, std::set<std::string>> keys;
+    for (const Kind* kind : kinds.kinds(category))
+      keys[kind->name] = kind_key_names(kinds, *kind, units);
+    return keys;
+  };
 }
 
 std::string describe_kinds(const KindRegistry& kinds, std::shared_ptr<const UnitSystem> units,

@@ -1,7 +1,11 @@
 #pragma once
 
 #include <memory>
+#include <set>
 #include <string>
+#include <vector>
+
+#include "sim/config/config_node.h"
 
 #include "sim/config/units.h"
 #include "sim/registry.h"
@@ -40,5 +44,14 @@ class ExampleScenario {
 
 std::vector<KindKey> kind_keys(const KindRegistry& kinds, const Kind& kind,
                                std::shared_ptr<const UnitSystem> units);
+
+// The names of the keys that one kind's examples read directly in its section, listed or not
+// ("bundle", "deflection", "load_cell_resolution", "muscle", "muscles" for a deflection load).
+std::set<std::string> kind_key_names(const KindRegistry& kinds, const Kind& kind,
+                                     std::shared_ptr<const UnitSystem> units);
+
+// For ConfigNode::reject_unknown_keys: the key names of every kind of a category, from their
+// examples (built only when asked, for a message). Refers to `kinds`: use it while they live.
+VariantKeys variant_keys(const KindRegistry& kinds, std::shared_ptr<const UnitSystem> units);
 
 }  // namespace tcpmsim

@@ -76,6 +76,8 @@ const Kind& KindRegistry::select(std::string_view category_name, const ConfigNod
   } else {
     name = node.choice_or(category.selector, names, category.default_kind);
   }
+  if (!category.selector.empty() && names.size() > 1)
+    node.mark_variant(category.name, category.selector, name);
   return registered(category_name, name);
 }
 

@@ -76,7 +76,8 @@ class KindRegistry {
   const Kind& registered(std::string_view category, std::string_view name) const;
 
   // The kind a section names: its selector read with the category's kinds as the choices (or
-  // the default when absent). A located ConfigError for an unknown kind.
+  // the default when absent), recorded in the section as its variant. A located ConfigError for
+  // an unknown kind.
   const Kind& select(std::string_view category, const ConfigNode& node) const;
 
   // The builder of `kind`, of the type its category uses (std::logic_error if not).

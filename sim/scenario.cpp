@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "sim/kind_listing.h"
+
 namespace tcpmsim {
 
 namespace {
@@ -169,7 +171,7 @@ Scenario build_scenario(const ConfigNode& root, const KindRegistry& kinds) {
     root.fail(std::string("the scenario does not assemble: ") + error.what());
   }
   scenario.solver = read_solver(root, *scenario.system);
-  root.reject_unknown_keys();
+  root.reject_unknown_keys(variant_keys(kinds, root.shared_units()));
   scenario.resolved_yaml = root.resolved_yaml();
   return scenario;
 }

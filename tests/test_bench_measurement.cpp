@@ -137,5 +137,5 @@ TEST_CASE("A bench file's mistakes are located at their keys") {
                     scenario) ==
         file +
             ":2:58: error: channels[0].noise: wrong unit in '1 mm': unit 'mm' cannot be "
-            "converted to 'N'");
+            "converted to 'N'; expected a force, e.g. N or mN");
 }

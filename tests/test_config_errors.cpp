@@ -76,31 +76,56 @@ TEST_CASE("A value of the wrong type says what was expected") {
 TEST_CASE("A quantity in the wrong unit is rejected with both units") {
   CHECK(error_of(replaced(kValid, "k1: 10 N/m", "k1: 10 N")) ==
         "test.yaml:11:9: error: muscle.mechanics.k1: wrong unit in '10 N': unit 'N' cannot be "
-        "converted to 'N/m'");
+        "converted to 'N/m'; expected a stiffness (force/length), e.g. N/m or N/mm");
   CHECK(error_of(replaced(kValid, "k1: 10 N/m", "k1: 10 blorps")) ==
         "test.yaml:11:9: error: muscle.mechanics.k1: wrong unit in '10 blorps': 'blorps' is not a "
-        "unit");
+        "unit; expected a stiffness (force/length), e.g. N/m or N/mm");
 }
 
 TEST_CASE("A unit is never taken for its reciprocal") {
   // udunits alone would invert these: 16 s as a rate of 1/16 Hz, mm/N as a stiffness.
   CHECK(error_of(replaced(kValid, "rate: 10 Hz", "rate: 16 s")) ==
         "test.yaml:2:16: error: output.rate: wrong unit in '16 s': unit 's' cannot be converted "
-        "to 'Hz'");
+        "to 'Hz'; expected a frequency (1/time), e.g. Hz or 1/s");
   CHECK(error_of(replaced(kValid, "duration: 10 s", "duration: 400 Hz")) ==
         "test.yaml:1:34: error: scenario.duration: wrong unit in '400 Hz': unit 'Hz' cannot be "
-        "converted to 's'");
+        "converted to 's'; expected a time, e.g. s or ms");
   CHECK(error_of(replaced(kValid, "k1: 10 N/m", "k1: 92.6 mm/N")) ==
         "test.yaml:11:9: error: muscle.mechanics.k1: wrong unit in '92.6 mm/N': unit 'mm/N' cannot "
-        "be converted to 'N/m'");
+        "be converted to 'N/m'; expected a stiffness (force/length), e.g. N/m or N/mm");
   CHECK_NOTHROW(scenario_from_text(replaced(kValid, "rate: 10 Hz", "rate: 10 1/s")));
 }
 
 TEST_CASE("A dimensional quantity without a unit is rejected") {
   CHECK(error_of(replaced(kValid, "heat_capacity: 0.5 J/K", "heat_capacity: 0.5")) ==
-        "test.yaml:6:20: error: muscle.thermal.heat_capacity: '0.5' has no unit; expected a "
-        "quantity in J/K "
-        "(or a unit convertible to it), e.g. '0.5 J/K'");
+        "test.yaml:6:20: error: muscle.thermal.heat_capacity: '0.5' has no unit; expected a heat "
+        "capacity (energy/temperature), e.g. J/K or mJ/K");
+}
+
+TEST_CASE("A unit hint names what the key measures, never the bare number in SI (issue 13)") {
+  // '10.8e-3 N/m' would pin a number meant in N/mm to N/m, 1000 times off.
+  CHECK(error_of(replaced(kValid, "k1: 10 N/m", "k1: 10.8e-3")) ==
+        "test.yaml:11:9: error: muscle.mechanics.k1: '10.8e-3' has no unit; expected a stiffness "
+        "(force/length), e.g. N/m or N/mm");
+  // A temperature: the offset unit first. 'C' is the coulomb.
+  CHECK(error_of(replaced(kValid, "ambient_temperature: 20 degC", "ambient_temperature: 23")) ==
+        "test.yaml:8:26: error: muscle.thermal.ambient_temperature: '23' has no unit; expected a "
+        "temperature, e.g. degC or K");
+  CHECK(error_of(replaced(kValid, "ambient_temperature: 20 degC", "ambient_temperature: 23 C")) ==
+        "test.yaml:8:26: error: muscle.thermal.ambient_temperature: wrong unit in '23 C': unit "
+        "'C' cannot be converted to 'K'; expected a temperature, e.g. degC or K");
+  // The hint comes from the expected unit's dimension, however the unit is spelt.
+  const UnitSystem& units = *shared_units();
+  CHECK(units.describe_dimension("N/m") == "a stiffness (force/length), e.g. N/m or N/mm");
+  CHECK(units.describe_dimension("kg/s^2") == "a stiffness (force/length), e.g. N/m or N/mm");
+  CHECK(units.describe_dimension("degC") == "a temperature, e.g. degC or K");
+  CHECK(units.describe_dimension("1/s") == "a frequency (1/time), e.g. Hz or 1/s");
+  CHECK(units.describe_dimension("rad") == "an angle, e.g. rad or deg");
+  // A dimension the table does not name keeps the unit itself.
+  CHECK(units.describe_dimension("s/H").empty());
+  CHECK(error_of(kValid, {"muscle.mechanics.k1=10.8e-3"}) ==
+        "command line (--set muscle.mechanics.k1=10.8e-3): error: muscle.mechanics.k1: '10.8e-3' "
+        "has no unit; expected a stiffness (force/length), e.g. N/m or N/mm");
 }
 
 TEST_CASE("Non-physical values are rejected") {
@@ -134,12 +159,46 @@ TEST_CASE("A choice outside its options suggests the nearest one") {
 
 TEST_CASE("Broken YAML is reported at its position") {
   CHECK(error_of(replaced(kValid, "output: {rate: 10 Hz}", "output: {rate: 10 Hz")) ==
-        "test.yaml:3:7: error: invalid YAML: end of map flow not found");
+        "test.yaml:2:9: error: invalid YAML: unclosed flow mapping '{' opened here");
+  CHECK(error_of(replaced(kValid, "  mechanics:\n", "  mechanics:\n   bad indentation\n")) ==
+        "test.yaml:12:7: error: invalid YAML: illegal map value");
+}
+
+TEST_CASE("A bracket or quote never closed is reported where it opens (issue 13)") {
+  // yaml-cpp gives up lines later ("end of sequence flow not found" at the next section).
+  CHECK(error_of(replaced(kValid, "k1: 10 N/m", "k1: [10 N/m")) ==
+        "test.yaml:11:9: error: invalid YAML: unclosed flow sequence '[' opened here");
+  // Its closing quote is taken from a later string, whose text then follows it ("end of map not
+  // found" far below).
+  CHECK(error_of(replaced(replaced(kValid, "resistance: 10 ohm", "resistance: \"10 ohm"),
+                          "{mode: power,", "{mode: \"power\",")) ==
+        "test.yaml:15:15: error: invalid YAML: unterminated quoted string opened here");
+  // yaml-cpp takes a single-quoted string that runs to the end of the file for a string.
+  CHECK(error_of(replaced(kValid, "resistance: 10 ohm", "resistance: '10 ohm")) ==
+        "test.yaml:15:15: error: invalid YAML: unterminated quoted string opened here");
+  CHECK(error_of(replaced(kValid, "resistance: 10 ohm", "resistance: \"10 ohm")) ==
+        "test.yaml:15:15: error: invalid YAML: unterminated quoted string opened here");
+  // A closing bracket of the other kind closes nothing.
+  CHECK(error_of(replaced(kValid, "output: {rate: 10 Hz}", "output: {rate: 10 Hz]")) ==
+        "test.yaml:2:9: error: invalid YAML: unclosed flow mapping '{' opened here (']' at 2:21 "
+        "does not close it)");
+  // Quotes and brackets in comments and inside plain text open nothing.
+  CHECK(error_of(replaced(replaced(kValid, "heat_capacity: 0.5 J/K",
+                                   "heat_capacity: 0.5 J/K  # it's [not \"open"),
+                          "k1: 10 N/m", "k1: [10 N/m")) ==
+        "test.yaml:11:9: error: invalid YAML: unclosed flow sequence '[' opened here");
+  CHECK(error_of(
+            replaced(replaced(kValid, "heat_capacity: 0.5 J/K", "heat_capacity: it's a[1] \"test"),
+                     "k1: 10 N/m", "k1: [10 N/m")) ==
+        "test.yaml:11:9: error: invalid YAML: unclosed flow sequence '[' opened here");
 }
 
 TEST_CASE("A duplicated key is an error, not a silent overwrite") {
+  // At the second, with its full key path and where the first is (issue 13).
   CHECK(error_of(replaced(kValid, "    k2: 2.5 N/m\n", "    k2: 2.5 N/m\n    k2: 3 N/m\n")) ==
-        "test.yaml:13:5: error: k2: duplicate key 'k2'");
+        "test.yaml:13:5: error: muscle.mechanics.k2: duplicate key 'k2' (first given at 12:5)");
+  CHECK(error_of(replaced(kValid, "power: 0 W}", "power: 0 W, mode: duty}")) ==
+        "test.yaml:17:34: error: drive.mode: duplicate key 'mode' (first given at 17:9)");
 }
 
 TEST_CASE("Errors in command-line overrides point at the --set") {
@@ -223,4 +282,82 @@ TEST_CASE("YAML aliases that expand without bound are refused at their place (is
   // A key that is itself a sequence is no name.
   CHECK_THAT(error_of(kValid + "? [a, b]\n: 3\n"),
              Catch::Contains("error: expected a key name, got a sequence"));
+}
+
+TEST_CASE("An empty file is reported as such at its start, not as a missing section (issue 13)") {
+  for (const std::string text : {"", "\n\n   \n", "# only\n  # comments\n", "---\n"}) {
+    INFO(text);
+    CHECK_THAT(error_of(text),
+               Catch::StartsWith("test.yaml:1:1: error: the file is empty (or holds only "
+                                 "comments); expected a mapping with 'scenario' and any of its "
+                                 "other sections (") &&
+                   Catch::Contains("output") && Catch::Contains("muscle"));
+  }
+}
+
+TEST_CASE("A key of another variant of a section names the variants that take it (issue 13)") {
+  // A hanging mass's key under a load of type deflection: not a misspelling of itself.
+  CHECK(error_of(replaced(kValid, "deflection: 20 mm}", "deflection: 20 mm, mass: 35 g}")) ==
+        "test.yaml:18:45: error: load.mass: 'mass' is not used with type: deflection; it belongs "
+        "to type: hanging_mass (type: deflection takes bundle, deflection, load_cell_resolution, "
+        "muscle, muscles)");
+  // Every variant that takes it.
+  CHECK_THAT(
+      error_of(replaced(kValid, "deflection: 20 mm}", "deflection: 20 mm, damping: 1 N*s/m}")),
+      Catch::Contains("load.damping: 'damping' is not used with type: deflection; it "
+                      "belongs to type: hanging_mass or joint ("));
+  // A misspelling is matched against this variant's keys only: 'mass' is none of them.
+  CHECK(error_of(replaced(kValid, "deflection: 20 mm}", "deflection: 20 mm, mas: 35 g}")) ==
+        "test.yaml:18:45: error: load.mas: unknown key 'mas'; known keys here: bundle, "
+        "deflection, load_cell_resolution, muscle, muscles, type");
+  // Parts read by other kinds too: a reduced thermal force's key under the physical form.
+  CHECK_THAT(error_of(replaced(kValid, "reference_temperature: 20 degC}",
+                               "reference_temperature: 20 degC, kappa_c: 0.1 1/s}")),
+             Catch::StartsWith("test.yaml:9:") &&
+                 Catch::Contains("muscle.thermal_force.kappa_c: 'kappa_c' is not used with form: "
+                                 "physical; it belongs to form: reduced (form: physical takes "));
+  // The same from the command line, located at the --set.
+  CHECK(error_of(kValid, {"load.mass=1 kg"}) ==
+        "command line (--set load.mass=1 kg): error: load.mass: 'mass' is not used with type: "
+        "deflection; it belongs to type: hanging_mass (type: deflection takes bundle, "
+        "deflection, load_cell_resolution, muscle, muscles)");
+}
+
+TEST_CASE("Every error about a key a --set introduced names that --set (issue 13)") {
+  // The section 'foo' exists only because the --set wrote it: the file has no part in it.
+  CHECK_THAT(error_of(kValid, {"foo.bar=1"}),
+             Catch::StartsWith("command line (--set foo.bar=1): error: foo: unknown key 'foo'; "
+                               "known keys here: "));
+  CHECK(error_of(kValid, {"muscle.mechanics.colour.red=1"}) ==
+        "command line (--set muscle.mechanics.colour.red=1): error: muscle.mechanics.colour: "
+        "unknown key 'colour'; known keys here: damping, force_offset, k1, k2");
+  // A section a --set adds is the --set's when it lacks a key, too.
+  CHECK(error_of(kValid, {"drives.d2.muscle=muscle"}) ==
+        "command line (--set drives.d2.muscle=muscle): error: drives.d2: missing required key "
+        "'mode'");
+  // A key the file has stays the file's.
+  CHECK(error_of(replaced(kValid, "output: {rate: 10 Hz}", "output: {rate: 10 Hz, colour: blue}"),
+                 {"foo=1"}) ==
+        "test.yaml:2:23: error: output.colour: unknown key 'colour'; known keys here: compression, "
+        "compression_level, rate, start");
+}
+
+TEST_CASE("A control byte in a file is refused where it is, and never printed raw (issue 13)") {
+  const std::string nul(1, '\0');
+  // In a value (yaml-cpp said "unknown escape character"), in a comment (accepted), at the end.
+  CHECK(error_of(replaced(kValid, "name: test", "name: te" + nul + "st")) ==
+        "test.yaml:1:20: error: the file holds a NUL byte (binary or corrupted?)");
+  CHECK(error_of(replaced(kValid, "  mechanics:\n", "  mechanics:  # k" + nul + "\n")) ==
+        "test.yaml:10:18: error: the file holds a NUL byte (binary or corrupted?)");
+  CHECK(error_of(kValid + nul) ==
+        "test.yaml:19:1: error: the file holds a NUL byte (binary or corrupted?)");
+  CHECK(error_of(replaced(kValid, "name: test", "name: te\x01st")) ==
+        "test.yaml:1:20: error: the file holds the control character \\x01 (binary or "
+        "corrupted?)");
+  // Tabs, carriage returns and line feeds are text.
+  CHECK(config_error(replaced(kValid, "k1: 10 N/m", "k1: 10 N/m  # a\tb\r")) == "no error");
+  // Any message quoting input escapes what a terminal would act on.
+  CHECK(std::string(ConfigError({"f.yaml", 1, 2, {}}, "a\x1b[31m", "got '\x07\t'").what()) ==
+        "f.yaml:1:2: error: a\\x1b[31m: got '\\x07\\t'");
+  CHECK(printable(std::string("ok \x7f") + '\0') == "ok \\x7f\\x00");
 }

@@ -237,7 +237,7 @@ identification: [0 s, 400 s]
   CHECK(fit_file_error(replaced(valid, "[5 N/m, 20 N/m]", "[5 N, 20 N]"), data) ==
         file +
             ":3:51: error: parameters[0].bounds[0]: wrong unit in '5 N': unit 'N' cannot be "
-            "converted to 'N/m'");
+            "converted to 'N/m'; expected a stiffness (force/length), e.g. N/m or N/mm");
   CHECK(fit_file_error(replaced(valid, "output: load.force", "output: load.forse"), data) ==
         file +
             ":2:36: error: outputs[0].output: the model has no output 'load.forse' (outputs "

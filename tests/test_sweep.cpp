@@ -196,9 +196,10 @@ TEST_CASE("a bad sweep file gets one located error before any run", "[sweep]") {
   CHECK_THAT(
       sweep_error(head + "set: ['solver.rtol=-1']\n"),
       Catch::Contains("sweep.yaml:3:7: error: set[0]: scenario 'scenario' does not take it"));
+  // Also a key the entry adds (issue 13: the error named the file, so the whole list was blamed).
   CHECK_THAT(sweep_error(head + "set: ['nonsense.key=3']\n"),
-             Catch::Contains("sweep.yaml:3:6: error: set: scenario 'scenario' does not take it: "
-                             "nonsense: unknown key 'nonsense'"));
+             Catch::Contains("sweep.yaml:3:7: error: set[0]: scenario 'scenario' does not take "
+                             "it: nonsense: unknown key 'nonsense'"));
 }
 
 TEST_CASE("a structural axis builds the scenario again for each of its values", "[sweep]") {

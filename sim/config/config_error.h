@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace tcpmsim {
 
@@ -14,6 +15,10 @@ struct SourceLocation {
 
   std::string describe() const;
 };
+
+// `text` fit for a terminal: every control byte (and DEL) written as an escape ("\t", "\x00"),
+// so that a message quoting bad input never prints the raw byte.
+std::string printable(std::string_view text);
 
 // One clear message about bad input: where, which key, what was expected, what was found.
 class ConfigError : public std::runtime_error {

@@ -10,6 +10,8 @@
 #include <set>
 #include <sstream>
 
+#include "sim/config/yaml_scan.h"
+
 namespace tcpmsim {
 
 // ---------------------------------------------------------------------------------------------
@@ -49,7 +51,11 @@ struct ConfigDocument {
   std::string file;
   YAML::Node root;
   YAML::Node resolved;
+  bool empty = false;  // the file holds no document (blank, or only comments)
   std::vector<Assignment> overrides;
+  // Mappings a --set added on its way to its key ("foo" for --set foo.bar=1), with its text.
+  std::map<std::string, std::string> introduced;
+  std::map<std::string, Variant> variants;  // section path -> the kind its selector chose
   std::map<std::string, std::set<std::string>> known_keys;  // mapping path -> asked keys
   std::set<std::string> consumed;
   std::shared_ptr<const UnitSystem> units;
@@ -85,6 +91,25 @@ bool is_prefix_path(std::string_view prefix, std::string_view path) {
   return path.size() == prefix.size() || path[prefix.size()] == '.' || path[prefix.size()] == '[';
 }
 
+SourceLocation command_line(const std::string& file, const std::string& assignment) {
+  return {file, 0, 0, "command line (--set " + assignment + ")"};
+}
+
+// Where the value or key at `path` came from: the last --set that gave it or a section above it,
+// or that introduced it ("foo" of --set foo.bar=1); else its mark in the file.
+SourceLocation locate(const ConfigDocument& document, const std::string& path,
+                      const YAML::Mark& mark) {
+  for (auto assignment = document.overrides.rbegin(); assignment != document.overrides.rend();
+       ++assignment) {
+    if (is_prefix_path(assignment->path, path))
+      return command_line(document.file, assignment->text);
+  }
+  if (const auto found = document.introduced.find(path); found != document.introduced.end())
+    return command_line(document.file, found->second);
+  if (mark.is_null()) return {document.file, 0, 0, {}};
+  return {document.file, mark.line + 1, mark.column + 1, {}};
+}
+
 std::string node_kind(const YAML::Node& node) {
   if (node.IsMap()) return "mapping";
   if (node.IsSequence()) return "sequence";
@@ -105,6 +130,10 @@ std::string trim(std::string_view text) {
 constexpr int kMaxDepth = 64;
 constexpr long kMaxNodes = 1000000;
 
+std::string position_text(const YAML::Mark& mark) {
+  return std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1);
+}
+
 struct DocumentWalk {
   const std::string& file;
   long nodes = 0;
@@ -117,36 +146,44 @@ struct DocumentWalk {
                           "themselves?); a configuration needs neither");
   }
 
-  void visit(const YAML::Node& node, int depth) {
+  // A key is a name, given once in its mapping.
+  void visit_map(const YAML::Node& node, int depth, const std::string& path) {
+    std::map<std::string, YAML::Mark> seen;
+    for (const auto& entry : node) {
+      const auto mark = entry.first.Mark();
+      if (!entry.first.IsScalar()) {
+        throw ConfigError({file, mark.line + 1, mark.column + 1, {}}, path,
+                          "expected a key name, got a " +
+                              std::string(entry.first.IsMap() ? "mapping" : "sequence"));
+      }
+      const std::string key = entry.first.as<std::string>();
+      const auto [first, added] = seen.try_emplace(key, mark);
+      if (!added) {
+        throw ConfigError(
+            {file, mark.line + 1, mark.column + 1, {}}, join(path, key),
+            "duplicate key '" + key + "' (first given at " + position_text(first->second) + ")");
+      }
+      visit(entry.second, depth + 1, join(path, key));
+    }
+  }
+
+  void visit(const YAML::Node& node, int depth, const std::string& path) {
     if (depth > kMaxDepth)
       refuse(node, "the document nests deeper than " + std::to_string(kMaxDepth) + " levels");
     if (++nodes > kMaxNodes)
       refuse(node, "the document expands to more than " + std::to_string(kMaxNodes) + " values");
     if (node.IsMap()) {
-      std::set<std::string> seen;
-      for (const auto& entry : node) {
-        if (!entry.first.IsScalar()) {
-          const auto mark = entry.first.Mark();
-          throw ConfigError({file, mark.line + 1, mark.column + 1, {}}, "",
-                            "expected a key name, got a " +
-                                std::string(entry.first.IsMap() ? "mapping" : "sequence"));
-        }
-        const std::string key = entry.first.as<std::string>();
-        if (!seen.insert(key).second) {
-          const auto mark = entry.first.Mark();
-          throw ConfigError({file, mark.line + 1, mark.column + 1, {}}, key,
-                            "duplicate key '" + key + "'");
-        }
-        visit(entry.second, depth + 1);
-      }
+      visit_map(node, depth, path);
     } else if (node.IsSequence()) {
-      for (const auto& element : node) visit(element, depth + 1);
+      std::size_t index = 0;
+      for (const auto& element : node)
+        visit(element, depth + 1, path + "[" + std::to_string(index++) + "]");
     }
   }
 };
 
 void reject_duplicate_keys(const YAML::Node& node, const std::string& file) {
-  DocumentWalk{file}.visit(node, 0);
+  DocumentWalk{file}.visit(node, 0, "");
 }
 
 // Splits "a.b[2].c" into {"a", "b", "[2]", "c"}.
@@ -171,8 +208,19 @@ std::vector<std::string> split_path(const std::string& path) {
   return parts;
 }
 
+// The path of the first `count` parts: {"a", "[2]", "b"} -> "a[2].b".
+std::string joined(const std::vector<std::string>& parts, std::size_t count) {
+  std::string path;
+  for (std::size_t k = 0; k < count; ++k)
+    path += (k == 0 || parts[k].front() == '[' ? "" : ".") + parts[k];
+  return path;
+}
+
+// Sets `value` at parts[index...] below `node`; the mappings it adds on the way are listed in
+// `introduced` by their paths.
 void assign_at(YAML::Node node, const std::vector<std::string>& parts, std::size_t index,
-               const YAML::Node& value, const SourceLocation& origin, const std::string& path) {
+               const YAML::Node& value, const SourceLocation& origin, const std::string& path,
+               std::vector<std::string>& introduced) {
   const std::string& part = parts[index];
   const bool last = index + 1 == parts.size();
   if (part.front() == '[') {
@@ -187,7 +235,7 @@ void assign_at(YAML::Node node, const std::vector<std::string>& parts, std::size
     if (last) {
       node[element] = value;
     } else {
-      assign_at(node[element], parts, index + 1, value, origin, path);
+      assign_at(node[element], parts, index + 1, value, origin, path, introduced);
     }
     return;
   }
@@ -197,8 +245,11 @@ void assign_at(YAML::Node node, const std::vector<std::string>& parts, std::size
   if (last) {
     node[part] = value;
   } else {
-    if (!node[part]) node[part] = YAML::Node(YAML::NodeType::Map);
-    assign_at(node[part], parts, index + 1, value, origin, path);
+    if (!node[part]) {
+      node[part] = YAML::Node(YAML::NodeType::Map);
+      introduced.push_back(joined(parts, index + 1));
+    }
+    assign_at(node[part], parts, index + 1, value, origin, path, introduced);
   }
 }
 
@@ -228,6 +279,106 @@ std::string read_text_file(const std::string& file) {
 
 namespace {
 
+// A text file holds no control bytes but tab, CR and LF: a NUL in a value used to read as an
+// escape error, one in a comment passed unnoticed.
+void reject_control_bytes(const std::string& text, const std::string& name) {
+  int line = 1, column = 1;
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 && c != '\t' && c != '\r' && c != '\n') {
+      throw ConfigError({name, line, column, {}}, "",
+                        byte == 0 ? "the file holds a NUL byte (binary or corrupted?)"
+                                  : "the file holds the control character " +
+                                        printable(std::string(1, c)) + " (binary or corrupted?)");
+    }
+    if (c == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+}
+
+// The YAML of `text`; a syntax error is located where yaml-cpp stopped, or, when it stopped
+// because a flow collection or a quoted string was never closed, where that was opened.
+YAML::Node parse_yaml(const std::string& text, const std::string& name) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::ParserException& error) {
+    const int line = error.mark.line + 1, column = error.mark.column + 1;
+    if (const auto unclosed = find_unclosed(text);
+        unclosed && std::pair(unclosed->line, unclosed->column) <= std::pair(line, column)) {
+      throw ConfigError({name, unclosed->line, unclosed->column, {}}, "",
+                        "invalid YAML: " + unclosed->what);
+    }
+    throw ConfigError({name, line, column, {}}, "", "invalid YAML: " + error.msg);
+  }
+}
+
+// Whether a quoted scalar of the document starts at (line, column), 1-based.
+bool quoted_scalar_at(const YAML::Node& node, int line, int column) {
+  if (node.IsScalar()) {
+    const auto mark = node.Mark();
+    return node.Tag() == "!" && mark.line + 1 == line && mark.column + 1 == column;
+  }
+  if (node.IsMap()) {
+    for (const auto& entry : node) {
+      if (quoted_scalar_at(entry.first, line, column) ||
+          quoted_scalar_at(entry.second, line, column))
+        return true;
+    }
+  } else if (node.IsSequence()) {
+    for (const auto& element : node) {
+      if (quoted_scalar_at(element, line, column)) return true;
+    }
+  }
+  return false;
+}
+
+// yaml-cpp takes a single-quoted string left open to the end of the file for a string that holds
+// the rest of the file (the error then was a missing key): refuse it where it opens. Call after
+// reject_duplicate_keys, which bounds the walk.
+void reject_quote_open_to_end(const YAML::Node& root, const std::string& text,
+                              const std::string& name) {
+  const auto unclosed = find_unclosed(text);
+  if (!unclosed || !unclosed->to_end || !quoted_scalar_at(root, unclosed->line, unclosed->column))
+    return;
+  throw ConfigError({name, unclosed->line, unclosed->column, {}}, "",
+                    "invalid YAML: " + unclosed->what);
+}
+
+// Applies one --set to the document.
+void apply_override(ConfigDocument& document, const std::string& assignment,
+                    const std::vector<std::string>& instance_sections) {
+  const SourceLocation origin = command_line(document.file, assignment);
+  const auto equals = assignment.find('=');
+  if (equals == std::string::npos || equals == 0 || equals + 1 == assignment.size()) {
+    throw ConfigError(origin, "", "expected --set key.path=value");
+  }
+  const std::string key = trim(assignment.substr(0, equals));
+  // Names joined by single dots, each possibly indexed ("muscle.effects[0].stiffness").
+  bool empty_name = key.empty() || key.front() == '.' || key.back() == '.' ||
+                    key.find("..") != std::string::npos || key.front() == '[';
+  if (empty_name) {
+    throw ConfigError(origin, "",
+                      "expected --set key.path=value, the key path names joined by '.' (e.g. "
+                      "muscle.mechanics.k1); '" +
+                          key + "' has an empty name");
+  }
+  const std::string path = expand_instance_path(document.root, key, instance_sections);
+  YAML::Node value;
+  try {
+    value = YAML::Load(assignment.substr(equals + 1));
+  } catch (const YAML::ParserException& error) {
+    throw ConfigError(origin, path, "the value is not valid YAML: " + error.msg);
+  }
+  std::vector<std::string> introduced;
+  assign_at(document.root, split_path(path), 0, value, origin, path, introduced);
+  for (const auto& added : introduced) document.introduced.try_emplace(added, assignment);
+  document.overrides.push_back({path, assignment, value});
+}
+
 std::shared_ptr<ConfigDocument> parse_document(const std::string& text, const std::string& name,
                                                const std::vector<std::string>& overrides,
                                                std::shared_ptr<const UnitSystem> units,
@@ -235,13 +386,12 @@ std::shared_ptr<ConfigDocument> parse_document(const std::string& text, const st
   auto document = std::make_shared<ConfigDocument>();
   document->file = name;
   document->units = std::move(units);
-  try {
-    document->root = YAML::Load(text);
-  } catch (const YAML::ParserException& error) {
-    throw ConfigError({name, error.mark.line + 1, error.mark.column + 1, {}}, "",
-                      "invalid YAML: " + error.msg);
+  reject_control_bytes(text, name);
+  document->root = parse_yaml(text, name);
+  if (document->root.IsNull()) {
+    document->empty = true;
+    document->root = YAML::Node(YAML::NodeType::Map);
   }
-  if (document->root.IsNull()) document->root = YAML::Node(YAML::NodeType::Map);
   if (!document->root.IsMap()) {
     const auto mark = document->root.Mark();
     throw ConfigError(
@@ -249,32 +399,8 @@ std::shared_ptr<ConfigDocument> parse_document(const std::string& text, const st
         "expected a mapping of sections at the top level, got a " + node_kind(document->root));
   }
   reject_duplicate_keys(document->root, name);
-  for (const auto& assignment : overrides) {
-    const SourceLocation origin{name, 0, 0, "command line (--set " + assignment + ")"};
-    const auto equals = assignment.find('=');
-    if (equals == std::string::npos || equals == 0 || equals + 1 == assignment.size()) {
-      throw ConfigError(origin, "", "expected --set key.path=value");
-    }
-    const std::string key = trim(assignment.substr(0, equals));
-    // Names joined by single dots, each possibly indexed ("muscle.effects[0].stiffness").
-    bool empty_name = key.empty() || key.front() == '.' || key.back() == '.' ||
-                      key.find("..") != std::string::npos || key.front() == '[';
-    if (empty_name) {
-      throw ConfigError(origin, "",
-                        "expected --set key.path=value, the key path names joined by '.' (e.g. "
-                        "muscle.mechanics.k1); '" +
-                            key + "' has an empty name");
-    }
-    const std::string path = expand_instance_path(document->root, key, instance_sections);
-    YAML::Node value;
-    try {
-      value = YAML::Load(assignment.substr(equals + 1));
-    } catch (const YAML::ParserException& error) {
-      throw ConfigError(origin, path, "the value is not valid YAML: " + error.msg);
-    }
-    assign_at(document->root, split_path(path), 0, value, origin, path);
-    document->overrides.push_back({path, assignment, value});
-  }
+  reject_quote_open_to_end(document->root, text, name);
+  for (const auto& assignment : overrides) apply_override(*document, assignment, instance_sections);
   document->resolved = YAML::Clone(document->root);
   return document;
 }
@@ -317,14 +443,7 @@ const UnitSystem& ConfigNode::units() const {
 }
 
 SourceLocation ConfigNode::location() const {
-  for (const auto& assignment : document_->overrides) {
-    if (is_prefix_path(assignment.path, path_)) {
-      return {document_->file, 0, 0, "command line (--set " + assignment.text + ")"};
-    }
-  }
-  const auto mark = node_.Mark();
-  if (mark.is_null()) return {document_->file, 0, 0, {}};
-  return {document_->file, mark.line + 1, mark.column + 1, {}};
+  return locate(*document_, path_, node_.Mark());
 }
 
 std::string ConfigNode::parameter_path() const {
@@ -373,6 +492,8 @@ void ConfigNode::declare(std::initializer_list<std::string_view> keys) const {
 }
 
 void ConfigNode::fail_missing(std::string_view key) const {
+  // A file without a document misses every section: say that instead.
+  if (path_.empty() && document_->empty) fail_empty_file(key);
   // A misspelt key is the usual reason a required one is missing: point at it.
   if (node_.IsMap()) {
     std::vector<std::string> expected{std::string(key)};
@@ -381,14 +502,24 @@ void ConfigNode::fail_missing(std::string_view key) const {
       if (document_->consumed.count(join(path_, present))) continue;
       if (document_->known_keys[path_].count(present)) continue;  // a legitimate other key
       if (!closest_match(present, expected).empty()) {
-        const auto mark = entry.first.Mark();
         throw ConfigError(
-            {document_->file, mark.line + 1, mark.column + 1, {}}, join(path_, present),
+            locate(*document_, join(path_, present), entry.first.Mark()), join(path_, present),
             "unknown key '" + present + "' (did you mean '" + std::string(key) + "'?)");
       }
     }
   }
   fail("missing required key '" + std::string(key) + "'");
+}
+
+void ConfigNode::fail_empty_file(std::string_view key) const {
+  std::string others;
+  for (const auto& section : document_->known_keys[path_]) {
+    if (section != key) others += (others.empty() ? "" : ", ") + section;
+  }
+  throw ConfigError({document_->file, 1, 1, {}}, "",
+                    "the file is empty (or holds only comments); expected a mapping with '" +
+                        std::string(key) + "'" +
+                        (others.empty() ? "" : " and any of its other sections (" + others + ")"));
 }
 
 ConfigNode ConfigNode::at(std::string_view key) const {
@@ -451,16 +582,24 @@ double ConfigNode::as_quantity(std::string_view si_unit, const ValueCheck& check
          "'");
   }
   const std::string unit = trim(std::string_view(rest, static_cast<std::size_t>(end - rest)));
+  // What the key measures with units a user would write, never the number in the SI unit: a
+  // bare number may be meant in another unit (N/mm for N/m) and be 1000 times off.
   if (unit.empty() && !dimensionless) {
-    fail("'" + text + "' has no unit; expected a quantity in " + std::string(si_unit) +
-         " (or a unit convertible to it), e.g. '" + trimmed + " " + std::string(si_unit) + "'");
+    const std::string dimension = units().describe_dimension(si_unit);
+    fail("'" + text + "' has no unit; expected " +
+         (dimension.empty()
+              ? "a quantity in " + std::string(si_unit) + " (or a unit convertible to it)"
+              : dimension));
   }
   if (!unit.empty()) {
     try {
       value = units().convert(value, unit, si_unit);
     } catch (const UnitError& problem) {
+      const std::string dimension = dimensionless ? "" : units().describe_dimension(si_unit);
       fail("wrong unit in '" + text + "': " + problem.what() +
-           (dimensionless ? " (expected a dimensionless number)" : ""));
+           (dimensionless       ? " (expected a dimensionless number)"
+            : dimension.empty() ? ""
+                                : "; expected " + dimension));
     }
   }
   if (std::string problem = check.problem(value, si_unit, "'" + text + "'"); !problem.empty())
@@ -625,43 +764,92 @@ std::pair<double, double> ConfigNode::interval(std::string_view key, std::string
 }
 
 namespace {
-void find_unknown(const ConfigDocument& document, const YAML::Node& node, const std::string& path) {
-  if (node.IsMap()) {
-    for (const auto& entry : node) {
-      const std::string key = entry.first.as<std::string>();
-      const std::string child = join(path, key);
-      if (!document.consumed.count(child)) {
-        const auto known = document.known_keys.find(path);
-        std::vector<std::string> candidates;
-        if (known != document.known_keys.end()) {
-          candidates.assign(known->second.begin(), known->second.end());
+
+std::string listed(const std::vector<std::string>& names, const std::string& separator = ", ") {
+  std::string text;
+  for (const auto& name : names) text += (text.empty() ? "" : separator) + name;
+  return text;
+}
+
+// The first key of the document that nobody asked for, explained: a key that another variant of
+// its section takes (a hanging mass's 'mass' under a load of type deflection) is named as such,
+// and a misspelling gets the nearest key that this section takes.
+class UnknownKeys {
+ public:
+  UnknownKeys(const ConfigDocument& document, const VariantKeys& variant_keys)
+      : document_(document), variant_keys_(variant_keys) {}
+
+  void visit(const YAML::Node& node, const std::string& path) const {
+    if (node.IsMap()) {
+      for (const auto& entry : node) {
+        const std::string key = entry.first.as<std::string>();
+        const std::string child = join(path, key);
+        if (!document_.consumed.count(child)) {
+          throw ConfigError(locate(document_, child, entry.first.Mark()), child,
+                            problem(path, key));
         }
-        const std::string suggestion = closest_match(key, candidates);
-        std::string problem = "unknown key '" + key + "'";
-        if (!suggestion.empty()) {
-          problem += " (did you mean '" + suggestion + "'?)";
-        } else if (!candidates.empty()) {
-          std::string listed;
-          for (const auto& candidate : candidates)
-            listed += (listed.empty() ? "" : ", ") + candidate;
-          problem += "; known keys here: " + listed;
-        }
-        SourceLocation location{
-            document.file, entry.first.Mark().line + 1, entry.first.Mark().column + 1, {}};
-        for (const auto& assignment : document.overrides) {
-          if (is_prefix_path(assignment.path, child))
-            location = {document.file, 0, 0, "command line (--set " + assignment.text + ")"};
-        }
-        throw ConfigError(location, child, problem);
+        visit(entry.second, child);
       }
-      find_unknown(document, entry.second, child);
-    }
-  } else if (node.IsSequence()) {
-    for (std::size_t i = 0; i < node.size(); ++i) {
-      find_unknown(document, node[i], path + "[" + std::to_string(i) + "]");
+    } else if (node.IsSequence()) {
+      for (std::size_t i = 0; i < node.size(); ++i)
+        visit(node[i], path + "[" + std::to_string(i) + "]");
     }
   }
-}
+
+ private:
+  std::string problem(const std::string& path, const std::string& key) const {
+    std::vector<std::string> candidates;
+    if (const auto known = document_.known_keys.find(path); known != document_.known_keys.end())
+      candidates.assign(known->second.begin(), known->second.end());
+    if (const auto variant = document_.variants.find(path);
+        variant != document_.variants.end() && variant_keys_) {
+      if (std::string other = of_another_variant(variant->second, key, candidates); !other.empty())
+        return other;
+    }
+    if (std::find(candidates.begin(), candidates.end(), key) != candidates.end())
+      return "'" + key + "' is not used with the other settings of this section";
+    std::string problem = "unknown key '" + key + "'";
+    if (const std::string suggestion = closest_match(key, candidates); !suggestion.empty()) {
+      problem += " (did you mean '" + suggestion + "'?)";
+    } else if (!candidates.empty()) {
+      problem += "; known keys here: " + listed(candidates);
+    }
+    return problem;
+  }
+
+  // The message for a key that only other kinds of the section's category take, or empty; the
+  // candidates lose the keys of other kinds that this one does not take.
+  std::string of_another_variant(const Variant& variant, const std::string& key,
+                                 std::vector<std::string>& candidates) const {
+    const auto keys = variant_keys_(variant.category);
+    const auto own = keys.find(variant.kind);
+    if (own == keys.end() || own->second.empty()) return {};
+    const auto takes = [&](const std::string& name) {
+      return name == variant.selector || own->second.count(name) > 0;
+    };
+    const auto kinds_taking = [&](const std::string& name) {
+      std::vector<std::string> kinds;
+      for (const auto& [kind, names] : keys) {
+        if (kind != variant.kind && names.count(name)) kinds.push_back(kind);
+      }
+      return kinds;
+    };
+    std::erase_if(candidates, [&](const std::string& candidate) {
+      return !takes(candidate) && !kinds_taking(candidate).empty();
+    });
+    const auto users = kinds_taking(key);
+    if (takes(key) || users.empty()) return {};
+    std::vector<std::string> own_keys(own->second.begin(), own->second.end());
+    std::erase(own_keys, variant.selector);
+    const std::string chosen = variant.selector + ": " + variant.kind;
+    return "'" + key + "' is not used with " + chosen + "; it belongs to " + variant.selector +
+           ": " + listed(users, " or ") + " (" + chosen + " takes " + listed(own_keys) + ")";
+  }
+
+  const ConfigDocument& document_;
+  const VariantKeys& variant_keys_;
+};
+
 }  // namespace
 
 std::vector<KeyRead> ConfigNode::reads() const {
@@ -682,8 +870,17 @@ void ConfigNode::describe_key(std::string_view key, const std::string& expected,
   if (!fallback.empty()) entry.fallback = fallback;
 }
 
-void ConfigNode::reject_unknown_keys() const {
-  find_unknown(*document_, document_->root, "");
+void ConfigNode::reject_unknown_keys(const VariantKeys& variant_keys) const {
+  UnknownKeys(*document_, variant_keys).visit(document_->root, "");
+}
+
+void ConfigNode::mark_variant(const std::string& category, const std::string& selector,
+                              const std::string& kind) const {
+  document_->variants[path_] = {category, selector, kind};
+}
+
+std::shared_ptr<const UnitSystem> ConfigNode::shared_units() const {
+  return document_->units;
 }
 
 std::string ConfigNode::resolved_yaml() const {

@@ -2,10 +2,13 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <functional>
 #include <initializer_list>
 #include <limits>
+#include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -28,6 +31,18 @@ struct KeyRead {
   bool optional = false;  // may be absent (asked with find or has)
   bool part = false;      // a section another kind reads (a signal, an effect)
 };
+
+// A section whose keys depend on a choice it makes: the kind its selector chose ("type:
+// deflection" of a load), recorded by whoever reads the choice.
+struct Variant {
+  std::string category;  // "load"
+  std::string selector;  // "type"
+  std::string kind;      // "deflection"
+};
+// The keys each kind of a category takes, by kind name: what explains a key that belongs to
+// another variant of its section.
+using VariantKeys =
+    std::function<std::map<std::string, std::set<std::string>>(const std::string& category)>;
 
 // A --set assignment as the document applied it: its key path written out in full (an
 // instance's name with its section, "muscles.m2.mechanics.k2"), its text as typed, its value.
@@ -69,6 +84,7 @@ class ConfigNode {
   SourceLocation location() const;
   [[noreturn]] void fail(const std::string& problem) const;
   const UnitSystem& units() const;
+  std::shared_ptr<const UnitSystem> shared_units() const;
 
   bool is_map() const { return node_.IsMap(); }
   bool is_sequence() const { return node_.IsSequence(); }
@@ -130,8 +146,13 @@ class ConfigNode {
   void describe_key(std::string_view key, const std::string& expected,
                     const std::string& fallback = "") const;
 
-  // After reading: reports the first key nobody asked for, with a "did you mean".
-  void reject_unknown_keys() const;
+  // Records that this section is the variant `kind` of `category`, chosen by `selector`.
+  void mark_variant(const std::string& category, const std::string& selector,
+                    const std::string& kind) const;
+  // After reading: reports the first key nobody asked for, with a "did you mean" among the keys
+  // this section takes. With `variant_keys`, a key of a variant section that only other kinds of
+  // its category take is reported as theirs, and their keys are no suggestions here.
+  void reject_unknown_keys(const VariantKeys& variant_keys = {}) const;
   // The document as read, with overrides applied and defaults filled in.
   std::string resolved_yaml() const;
 
@@ -142,6 +163,7 @@ class ConfigNode {
   void record_default(std::string_view key, const std::string& value) const;
   bool present(std::string_view key) const;  // has() without marking the key optional
   [[noreturn]] void fail_missing(std::string_view key) const;
+  [[noreturn]] void fail_empty_file(std::string_view key) const;
 
   std::shared_ptr<ConfigDocument> document_;
   YAML::Node node_;

@@ -43,6 +43,45 @@ bool same_dimension(ut_system* system, const ut_unit* source, const ut_unit* tar
   UnitPointer quotient(ut_divide(source, target));
   return quotient && ut_are_convertible(quotient.get(), ut_get_dimensionless_unit_one(system)) != 0;
 }
+// The dimensions a scenario's quantities have, each named with two units a user would write.
+// A unit finds its entry by its spelling first, then by its dimension (the first entry of that
+// dimension); dimensionless entries (an angle) match by spelling only.
+struct Dimension {
+  std::string_view unit;
+  std::string_view name;
+  std::string_view examples;
+  bool dimensionless = false;
+};
+
+constexpr Dimension kDimensions[] = {
+    {"m", "a length", "mm or m"},
+    {"s", "a time", "s or ms"},
+    {"Hz", "a frequency (1/time)", "Hz or 1/s"},
+    {"K", "a temperature", "degC or K"},
+    {"N", "a force", "N or mN"},
+    {"N/m", "a stiffness (force/length)", "N/m or N/mm"},
+    {"N*s/m", "a damping (force*time/length)", "N*s/m or N*s/mm"},
+    {"kg", "a mass", "g or kg"},
+    {"m/s", "a velocity", "m/s or mm/s"},
+    {"m/s^2", "an acceleration", "m/s^2 or mm/s^2"},
+    {"W", "a power", "W or mW"},
+    {"J", "an energy", "J or mJ"},
+    {"W/K", "a thermal conductance (power/temperature)", "W/K or mW/K"},
+    {"J/K", "a heat capacity (energy/temperature)", "J/K or mJ/K"},
+    {"N/K", "a force per temperature", "N/K or mN/K"},
+    {"N/J", "a force per energy", "N/J or mN/J"},
+    {"1/K", "a temperature coefficient (1/temperature)", "1/K"},
+    {"ohm", "a resistance", "ohm or mohm"},
+    {"ohm/m", "a resistance per length", "ohm/m or ohm/mm"},
+    {"H", "an inductance", "H or uH"},
+    {"V", "a voltage", "V or mV"},
+    {"A", "a current", "A or mA"},
+    {"rad", "an angle", "rad or deg", true},
+};
+
+std::string described(const Dimension& dimension) {
+  return std::string(dimension.name) + ", e.g. " + std::string(dimension.examples);
+}
 }  // namespace
 
 UnitSystem::UnitSystem() : handle_(std::make_unique<Handle>()) {
@@ -82,6 +121,17 @@ std::function<double(double)> UnitSystem::converter(std::string_view from,
   }
   std::shared_ptr<cv_converter> owned(converter, cv_free);
   return [owned](double value) { return cv_convert_double(owned.get(), value); };
+}
+
+std::string UnitSystem::describe_dimension(std::string_view unit) const {
+  for (const Dimension& dimension : kDimensions) {
+    if (dimension.unit == unit) return described(dimension);
+  }
+  if (unit.empty() || convertible(unit, "1")) return {};
+  for (const Dimension& dimension : kDimensions) {
+    if (!dimension.dimensionless && convertible(unit, dimension.unit)) return described(dimension);
+  }
+  return {};
 }
 
 double UnitSystem::convert(double value, std::string_view from, std::string_view to) const {

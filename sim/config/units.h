@@ -33,6 +33,10 @@ class UnitSystem {
   // The conversion from `from` into `to` as a function, parsed once, for converting many
   // values (a data file's column). Throws UnitError as convert does.
   std::function<double(double)> converter(std::string_view from, std::string_view to) const;
+  // What a value in `unit` measures, for a message that asks for one: "a stiffness
+  // (force/length), e.g. N/m or N/mm" for N/m or any unit of its dimension; empty for a unit of
+  // a dimension this table does not name.
+  std::string describe_dimension(std::string_view unit) const;
 
  private:
   struct Handle;

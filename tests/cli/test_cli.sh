@@ -66,6 +66,29 @@ expect 3 "a key of a section is not an instance's name" -- "$tcpmsim" validate "
   --set "duration=1 s"
 contains "$work/err" "error: duration: unknown key 'duration'" "only plural sections' names expand"
 
+# Issue 13: one located message for each class of bad input.
+: >"$work/empty.yaml"
+expect 3 "an empty scenario file is a configuration error" -- "$tcpmsim" validate "$work/empty.yaml"
+contains "$work/err" "empty.yaml:1:1: error: the file is empty (or holds only comments); expected a mapping with 'scenario'" "the empty file is named as such, at its start"
+printf 'scenario: {name: x}  # a\0b\n' >"$work/nul.yaml"
+expect 3 "a NUL byte is a configuration error" -- "$tcpmsim" validate "$work/nul.yaml"
+contains "$work/err" "nul.yaml:1:25: error: the file holds a NUL byte (binary or corrupted?)" "the NUL byte is located"
+printf 'scenario: {name: "x\033[2J\001}\n' >"$work/control.yaml"
+expect 3 "a control character is a configuration error" -- "$tcpmsim" validate "$work/control.yaml"
+LC_ALL=C grep -q '[[:cntrl:]]' "$work/err" && { echo "FAIL: a raw control byte in the message"; cat -v "$work/err"; failures=$((failures + 1)); } || echo "ok: no raw control byte in the message"
+contains "$work/err" 'control.yaml:1:20: error: the file holds the control character \x1b' "the control character is escaped"
+expect 3 "a --set that adds a section the scenario does not have" -- "$tcpmsim" validate "$config" --set foo.bar=1
+contains "$work/err" "command line (--set foo.bar=1): error: foo: unknown key 'foo'" "the error names the --set, not the file"
+expect 3 "a --set of a key another load type takes" -- "$tcpmsim" validate "$config" --set "load.mass=1 kg"
+contains "$work/err" "command line (--set load.mass=1 kg): error: load.mass: 'mass' is not used with type: deflection; it belongs to type: hanging_mass" "the error names the types that take the key"
+sed "s/^    k1: .*/    k1: 10.8e-3/" "$config" >"$work/bare.yaml"
+expect 3 "a bare number for a stiffness is a configuration error" -- "$tcpmsim" validate "$work/bare.yaml"
+contains "$work/err" "error: muscle.mechanics.k1: '10.8e-3' has no unit; expected a stiffness (force/length), e.g. N/m or N/mm" "the hint names the dimension, not the number in SI"
+sed "s/^    lambda_x: \(.*\)/    lambda_x: [\1/" "$config" >"$work/unclosed.yaml"
+expect 3 "an unclosed bracket is a configuration error" -- "$tcpmsim" validate "$work/unclosed.yaml"
+line=$(grep -n "lambda_x: \[" "$work/unclosed.yaml" | cut -d: -f1)
+contains "$work/err" "unclosed.yaml:$line:15: error: invalid YAML: unclosed flow sequence '[' opened here" "the error is where the bracket opens"
+
 expect 0 "run a short scenario" -- "$tcpmsim" run "$config" --set "scenario.duration=5 s" -o "$work/run.h5" --quiet
 [[ -s $work/run.h5 && ! -e $work/run.h5.partial ]] && echo "ok: complete record, no partial" || { echo "FAIL: record"; failures=$((failures + 1)); }
 
@@ -112,6 +135,22 @@ contains "$work/err" "spring-forces takes coil-spring scenarios with an inductan
 [[ ! -e $work/sf.h5 ]] && echo "ok: nothing written for the wrong kind" || { echo "FAIL: output for the wrong kind"; failures=$((failures + 1)); }
 expect 2 "coil-fit with a missing data directory is a usage error" -- "$tcpmsim" coil-fit \
   "$source_dir/configs/springs/s1.yaml" --data "$work/none"
+# Issue 13: control-tasks on a coil spring blamed its own calibration --set; a usage error now.
+expect 2 "control-tasks on a coil-spring scenario is a usage error" -- "$tcpmsim" control-tasks \
+  "$source_dir/configs/ch4/sa_harmonic_first.yaml" -o "$work/ct.h5"
+contains "$work/err" "control-tasks takes the chapter-7 self-sensing control scenarios (configs/ch7_control/*.yaml, configs/pair/*.yaml); $source_dir/configs/ch4/sa_harmonic_first.yaml is not one" "the wrong-kind error names the file and what the command takes"
+[[ ! -e $work/ct.h5 ]] && echo "ok: nothing written for the wrong kind" || { echo "FAIL: control-tasks output for the wrong kind"; failures=$((failures + 1)); }
+expect 3 "coil-fit on a muscle scenario is a configuration error" -- "$tcpmsim" coil-fit "$config" -o "$work/cf.h5"
+contains "$work/err" "$config:" "the coil-fit error names the file"
+contains "$work/err" "missing required key 'coil_spring'" "the coil-fit error says what the file lacks"
+# The spring file names its data beside it: coil-fit runs from any directory (issue 13).
+expect 0 "coil-fit finds the thesis' data from another working directory" -- \
+  bash -c 'cd "$1" && "$2" coil-fit "$3" -o "$1/coil_fit.h5" --quiet' _ "$work" "$tcpmsim" \
+  "$source_dir/configs/springs/s1.yaml"
+[[ -s $work/coil_fit.h5 ]] && echo "ok: coil-fit wrote its file" || { echo "FAIL: no coil_fit.h5"; failures=$((failures + 1)); }
+expect 2 "an explicit --data stays relative to the working directory" -- \
+  bash -c 'cd "$1" && "$2" coil-fit "$3" --data data/coil-spring-inductance -o "$1/none.h5"' _ \
+  "$work" "$tcpmsim" "$source_dir/configs/springs/s1.yaml"
 
 # fit: a measurement (the chapter-7 bench, simulated), a model replaying it, the report.
 discover="$source_dir/configs/discover"
