@@ -2,8 +2,9 @@
 # Builds the libFuzzer targets with clang (build-fuzz: ASan + UBSan + coverage) and runs each
 # for a bounded time, seeded from the shipped inputs: the scenario loader from configs/ (and a
 # few --set seeds), the measured-data CSV reader and the coil-sequence reader from data files.
-# New inputs that widen coverage go to build-fuzz/corpus/<target>; a crash stops the script
-# with the crashing input saved as build-fuzz/crash-*, to become a regression test.
+# New inputs that widen coverage go to build-fuzz/corpus/<target>; a crash, leak, hang (timeout)
+# or out-of-memory stops the script with the input saved as build-fuzz/<target>-crash-* (-leak-,
+# -timeout-, -oom-), to become a regression test.
 #   scripts/fuzz.sh [SECONDS_PER_TARGET (default 60)] [-- extra libFuzzer options]
 #   scripts/fuzz.sh 0 -runs=1000000   # a million executions per target
 set -euo pipefail
@@ -45,11 +46,14 @@ for target in "${targets[@]}"; do
   echo "fuzz: $target for ${seconds} s ($(ls "$seed_dir" | wc -l) seeds, $(ls "$corpus" | wc -l) in the corpus)"
   ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
     "$build/fuzz/$target" "$corpus" "$seed_dir" -max_total_time="$seconds" -max_len=65536 \
-    -timeout=60 -rss_limit_mb=2048 -artifact_prefix="$build/crash-$target-" -print_final_stats=1 "$@" \
+    -timeout=60 -rss_limit_mb=2048 -artifact_prefix="$build/$target-" -print_final_stats=1 "$@" \
     2>&1 | grep -E "^(#[0-9]+ +DONE|stat::number_of_executed_units|stat::peak_rss|==[0-9]+==|SUMMARY|fuzz:)|Done [0-9]+ runs" || true
-  if compgen -G "$build/crash-$target-*" >/dev/null; then
-    echo "fuzz: $target crashed; the input: $(ls $build/crash-$target-*)" >&2
-    exit 1
-  fi
+  # A crash, a leak, a hang or running out of memory fails; a slow input (slow-unit) does not.
+  for kind in crash leak timeout oom; do
+    if compgen -G "$build/$target-$kind-*" >/dev/null; then
+      echo "fuzz: $target: $kind; the input: $(ls "$build/$target-$kind-"*)" >&2
+      exit 1
+    fi
+  done
 done
 echo "fuzz: no crash"
