@@ -13,7 +13,8 @@ class InterruptGuard {
   InterruptGuard(const InterruptGuard&) = delete;
   InterruptGuard& operator=(const InterruptGuard&) = delete;
 
-  // The signal received since the guard was made (SIGINT or SIGTERM), or 0.
+  // The signal received since the last guard was made (SIGINT or SIGTERM), or 0; it stays
+  // readable after the guard's end.
   static int received();
   // Throws StopRequest ("interrupted by SIGTERM") when a signal was received.
   static void stop_if_received();

@@ -39,9 +39,6 @@ enum ExitCode : int {
   kConfigError = 3,
   kOutputError = 4,
   kInternalError = 5,
-  // 128 + the signal's number, as a shell reports a process the signal ended.
-  kInterruptedBySigint = 130,
-  kInterruptedBySigterm = 143,
 };
 
 struct Options {
@@ -160,7 +157,7 @@ int run(const Options& options) {
   if (outcome.interrupted) {
     std::cerr << "tcpmsim: " << outcome.failure << " at t = " << outcome.time_reached << " s\n"
               << "tcpmsim: the record up to there is in " << outcome.output_path << "\n";
-    return outcome.failure.ends_with("SIGINT") ? kInterruptedBySigint : kInterruptedBySigterm;
+    return 128 + tcpmsim::InterruptGuard::received();  // 130 (SIGINT) or 143 (SIGTERM)
   }
   if (!outcome.succeeded) {
     std::cerr << "tcpmsim: simulation failed: " << outcome.failure << "\n"

@@ -21,21 +21,21 @@ bool same(const P& a, const P& b) {
 }
 }  // namespace
 
-std::string coil_geometry_problem(const P& p) {
+CoilGeometryProblem coil_geometry_problem(const P& p) {
   if (!(p.coil_radius > 0.5 * p.wire_diameter)) {
-    return "coil_radius: " + number_text(p.coil_radius) +
-           " m is not larger than half the "
-           "wire diameter (" +
-           number_text(0.5 * p.wire_diameter) +
-           " m): the wire does not fit "
-           "in the coil";
+    return {"coil_radius", number_text(p.coil_radius) +
+                               " m is not larger than half the wire "
+                               "diameter (" +
+                               number_text(0.5 * p.wire_diameter) +
+                               " m): the wire does not fit in the coil"};
   }
   const double solid_length = p.windings * p.wire_diameter;
   if (!(p.shortest_length > solid_length)) {
-    return "operating_range: the shortest length " + number_text(p.shortest_length) +
-           " m is not longer than the solid length, windings x wire_diameter = " +
-           std::to_string(p.windings) + " x " + number_text(p.wire_diameter) +
-           " m = " + number_text(solid_length) + " m: the windings would overlap";
+    return {"operating_range",
+            "the shortest length " + number_text(p.shortest_length) +
+                " m is not longer than the solid length, windings x wire_diameter = " +
+                std::to_string(p.windings) + " x " + number_text(p.wire_diameter) +
+                " m = " + number_text(solid_length) + " m: the windings would overlap"};
   }
   return {};
 }
@@ -104,10 +104,8 @@ std::unique_ptr<CoilSpringInductance> CoilSpringInductance::from_config(
                 bind.member(&P::shortest_length), bind.member(&P::longest_length));
   bind.quantity_or(node, "preload_length", "m", initial_length, ValueCheck::positive(), p,
                    bind.member(&P::preload_length));
-  if (const std::string problem = coil_geometry_problem(p); !problem.empty()) {
-    const std::string key = problem.substr(0, problem.find(':'));
-    node.at(key).fail(problem.substr(key.size() + 2));
-  }
+  if (const CoilGeometryProblem found = coil_geometry_problem(p); !found.key.empty())
+    node.at(found.key).fail(found.problem);
   return std::make_unique<CoilSpringInductance>(
       group, p, std::move(bind), chain_group + ".rest_length", chain_group + ".stiffness");
 }
@@ -140,7 +138,8 @@ P CoilSpringInductance::run_parameters(const RunSetup& setup) const {
 }
 
 std::string CoilSpringInductance::check_parameters(const RunSetup& setup) const {
-  return coil_geometry_problem(run_parameters(setup));
+  const CoilGeometryProblem found = coil_geometry_problem(run_parameters(setup));
+  return found.key.empty() ? std::string() : found.message();
 }
 
 std::unique_ptr<RunState> CoilSpringInductance::create_run_state(const RunSetup& setup) const {

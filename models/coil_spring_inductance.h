@@ -34,11 +34,16 @@ struct CoilSpringInductanceParameters {
   double preload_length = 0.0;   // the static length the fit must reproduce [m]
 };
 
-// "" when the geometry can be a coil, else why not (a message that starts with the key to blame):
+// Whether the geometry can be a coil, and if not, the key to blame and why:
 // the wire must fit inside the coil radius, and the N windings must not overlap anywhere in the
 // operating range (l_min > N delta, the solid length), which also keeps every ring distance
 // inside the range Maxwell's evaluator tabulates.
-std::string coil_geometry_problem(const CoilSpringInductanceParameters& parameters);
+struct CoilGeometryProblem {
+  std::string key;      // "" when the geometry is a coil
+  std::string problem;  // why it is not
+  std::string message() const { return key + ": " + problem; }
+};
+CoilGeometryProblem coil_geometry_problem(const CoilSpringInductanceParameters& parameters);
 
 // The constrained least-squares fit of (4.13): y = 1/l = alpha L + beta through (L_p, y_p).
 struct InverseLengthFit {

@@ -81,16 +81,23 @@ class SensitivitySink : public OutputSink {
   virtual void record_sensitivities(double time, const ForwardSensitivities& sensitivities) = 0;
 };
 
-class SolverFailure : public std::runtime_error {
+// A run that ended before its end time: why, the time reached and the statistics so far.
+class RunEnded : public std::runtime_error {
  public:
-  SolverFailure(const std::string& message, double time, SolverStatistics statistics)
-      : std::runtime_error(message), time_(time), statistics_(statistics) {}
+  RunEnded(const std::string& reason, double time, SolverStatistics statistics)
+      : std::runtime_error(reason), time_(time), statistics_(statistics) {}
   double time() const { return time_; }
   const SolverStatistics& statistics() const { return statistics_; }
 
  private:
   double time_;
   SolverStatistics statistics_;
+};
+
+// The solver could not go on (the CVODE flag, the time, the worst state entries).
+class SolverFailure : public RunEnded {
+ public:
+  using RunEnded::RunEnded;
 };
 
 // Thrown by a progress observer to end a run early (an interrupt, a cancelled job); the run
@@ -100,18 +107,11 @@ class StopRequest : public std::runtime_error {
   using std::runtime_error::runtime_error;  // the reason, e.g. "interrupted by SIGTERM"
 };
 
-// A run ended early at a StopRequest: the time reached and the statistics so far. Every output
-// time up to time() has been handed to the sink.
-class RunInterrupted : public std::runtime_error {
+// A run ended early at a StopRequest. Every output time up to time() has been handed to the
+// sink.
+class RunInterrupted : public RunEnded {
  public:
-  RunInterrupted(const std::string& reason, double time, SolverStatistics statistics)
-      : std::runtime_error(reason), time_(time), statistics_(statistics) {}
-  double time() const { return time_; }
-  const SolverStatistics& statistics() const { return statistics_; }
-
- private:
-  double time_;
-  SolverStatistics statistics_;
+  using RunEnded::RunEnded;
 };
 
 // CVODE (BDF, Newton) over a System and one run Context. Steps with CV_ONE_STEP, writes
