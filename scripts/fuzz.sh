@@ -4,7 +4,7 @@
 # few --set seeds), the measured-data CSV reader and the coil-sequence reader from data files.
 # New inputs that widen coverage go to build-fuzz/corpus/<target>; a crash, leak, hang (timeout)
 # or out-of-memory stops the script with the input saved as build-fuzz/<target>-crash-* (-leak-,
-# -timeout-, -oom-), to become a regression test.
+# -timeout-, -oom-) and printed in base64, to become a regression input in fuzz/regressions/.
 #   scripts/fuzz.sh [SECONDS_PER_TARGET (default 60)] [-- extra libFuzzer options]
 #   scripts/fuzz.sh 0 -runs=1000000   # a million executions per target
 set -euo pipefail
@@ -13,11 +13,18 @@ seconds=${1:-60}
 shift || true
 [[ ${1:-} == -- ]] && shift
 scripts/install-deps.sh
-build=build-fuzz
-CC=clang CXX=clang++ cmake -S . -B $build -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTCPMSIM_FUZZ=ON \
-  -DTCPMSIM_BUILD_TESTS=OFF >/dev/null
+# TCPMSIM_FUZZ_BUILD_DIR: a tree already configured with TCPMSIM_FUZZ=ON (CI fuzzes its sanitizer
+# tree, built by scripts/test.sh); by default build-fuzz, configured here.
+build=${TCPMSIM_FUZZ_BUILD_DIR:-build-fuzz}
+if [[ ! -f $build/CMakeCache.txt ]]; then
+  CC=clang CXX=clang++ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTCPMSIM_FUZZ=ON \
+    -DTCPMSIM_BUILD_TESTS=OFF >/dev/null
+elif ! grep -q '^TCPMSIM_FUZZ:BOOL=ON' "$build/CMakeCache.txt"; then
+  echo "fuzz: $build is not configured with TCPMSIM_FUZZ=ON" >&2
+  exit 2
+fi
 targets=(fuzz_scenario fuzz_measured_csv fuzz_coil_sequence)
-cmake --build $build -j"$(nproc)" --target "${targets[@]}"
+cmake --build "$build" -j"$(nproc)" --target "${targets[@]}"
 
 seeds() {  # the seed directory of a target, made afresh from the repository's inputs
   local target=$1 dir=$build/seeds/$1
@@ -39,19 +46,30 @@ seeds() {  # the seed directory of a target, made afresh from the repository's i
 
 # -timeout=60: the magnetic bundle (configs/bundle/magnetic_coupling.yaml) computes its mutual
 # inductances when it loads, 0.6 s in Release and over 10 s instrumented.
+# fuzz/regressions/<target> holds every input fuzzing has found to fail: each is run first.
+# tests/lsan.supp names the leaks that are a library's own (udunits2's parser).
 for target in "${targets[@]}"; do
   corpus=$build/corpus/$target
   mkdir -p "$corpus"
   seed_dir=$(seeds "$target")
+  regressions=()
+  [[ -d fuzz/regressions/$target ]] && regressions=("fuzz/regressions/$target")
+  rm -f "$build/$target-"{crash,leak,timeout,oom}-*
+  log=$build/$target.log
   echo "fuzz: $target for ${seconds} s ($(ls "$seed_dir" | wc -l) seeds, $(ls "$corpus" | wc -l) in the corpus)"
   ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-    "$build/fuzz/$target" "$corpus" "$seed_dir" -max_total_time="$seconds" -max_len=65536 \
-    -timeout=60 -rss_limit_mb=2048 -artifact_prefix="$build/$target-" -print_final_stats=1 "$@" \
-    2>&1 | grep -E "^(#[0-9]+ +DONE|stat::number_of_executed_units|stat::peak_rss|==[0-9]+==|SUMMARY|fuzz:)|Done [0-9]+ runs" || true
+    LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp print_suppressions=0" \
+    "$build/fuzz/$target" "$corpus" "$seed_dir" "${regressions[@]}" -max_total_time="$seconds" \
+    -max_len=65536 -timeout=60 -rss_limit_mb=2048 -artifact_prefix="$build/$target-" \
+    -print_final_stats=1 "$@" >"$log" 2>&1 || true
+  grep -E "^(#[0-9]+ +DONE|stat::number_of_executed_units|stat::peak_rss)|Done [0-9]+ runs" "$log" || true
   # A crash, a leak, a hang or running out of memory fails; a slow input (slow-unit) does not.
   for kind in crash leak timeout oom; do
     if compgen -G "$build/$target-$kind-*" >/dev/null; then
-      echo "fuzz: $target: $kind; the input: $(ls "$build/$target-$kind-"*)" >&2
+      artifact=$(ls "$build/$target-$kind-"* | head -n 1)
+      grep -A 40 -E "==[0-9]+==ERROR|runtime error|Sanitizer" "$log" | head -n 60 >&2 || true
+      echo "fuzz: $target: $kind; the input: $artifact (base64: $(base64 -w0 "$artifact"))" >&2
+      echo "fuzz: add it to fuzz/regressions/$target/ once fixed" >&2
       exit 1
     fi
   done

@@ -6,6 +6,8 @@
 #   TCPMSIM_BUILD_DIR         build directory (default build, build-sanitize or build-tsan)
 #   TCPMSIM_TEST_FILTER       only the tests whose names match this regular expression
 #   TCPMSIM_BUILD_TARGETS     only these targets (default: all, benchmarks included)
+#   TCPMSIM_FUZZ=ON           also build the libFuzzer targets and test their regression inputs
+#                             (needs CC=clang CXX=clang++; scripts/fuzz.sh can then fuzz this tree)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -16,7 +18,9 @@ case $sanitize in
   *) default_dir=build-sanitize; build_type=RelWithDebInfo ;;
 esac
 build_dir="${TCPMSIM_BUILD_DIR:-$default_dir}"
-cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE="$build_type" -DTCPMSIM_SANITIZE="$sanitize" -DTCPMSIM_BUILD_TESTS=ON
+cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE="$build_type" -DTCPMSIM_SANITIZE="$sanitize" -DTCPMSIM_BUILD_TESTS=ON \
+  -DTCPMSIM_FUZZ="${TCPMSIM_FUZZ:-OFF}"
 cmake --build "$build_dir" -j"$(nproc)" ${TCPMSIM_BUILD_TARGETS:+--target $TCPMSIM_BUILD_TARGETS}
-ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" \
+ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp print_suppressions=0" \
+  UBSAN_OPTIONS=print_stacktrace=1 TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" \
   ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)" ${TCPMSIM_TEST_FILTER:+-R "$TCPMSIM_TEST_FILTER"}

@@ -13,7 +13,7 @@ using namespace tcpmsim::testing;
 
 namespace {
 
-constexpr double kAmbient = 293.15, kCapacity = 0.5, kConductance = 0.05, kPower = 1.5;
+constexpr double kCapacity = 0.5, kConductance = 0.05, kPower = 1.5;
 constexpr double kStepTime = 10.0;
 
 // T(t) = T_amb + P/G (1 - exp(-G tau / C)), tau = t - t_step, and its derivatives by G and C.

@@ -126,6 +126,10 @@ TEST_CASE("A bad data file is refused with its file, line and column and what wa
   SECTION("an unknown unit, a unit of another quantity, a reciprocal unit") {
     CHECK(data_error("time[s],force[blorp]\n0,1\n") ==
           "run.csv:1:15: error: 'blorp' is not a unit; expected a force, e.g. N, mN");
+    // udunits2's parser leaks the identifiers of a unit it fails to parse (tests/lsan.supp);
+    // the refusal itself is as clean as any other.
+    CHECK(data_error("time[s],force[m 0v]\n0,1\n") ==
+          "run.csv:1:15: error: 'm 0v' is not a unit; expected a force, e.g. N, mN");
     CHECK(data_error("time[s],force[mm]\n0,1\n") ==
           "run.csv:1:15: error: unit 'mm' of channel 'force' is not a force, e.g. N, mN");
     CHECK(data_error("time[Hz],force[N]\n0,1\n") ==
