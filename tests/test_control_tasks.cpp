@@ -79,6 +79,26 @@ TEST_CASE("Calibration adds its measured offsets to those the scenario configure
   }
 }
 
+TEST_CASE("The estimation error is the estimate minus the truth") {
+  // Recomputed here from the run's own channels: the deflection task's error at every sample of
+  // the task is estimator/deflection - muscle/deflection, sign included.
+  ControlTaskSettings settings;
+  settings.calibrate = false;
+  settings.overrides = {"scenario.duration=60 s"};
+  const auto results = run_control_tasks({control_configs()[0]}, settings, shared_units());
+  const Trace trace =
+      simulate(load_scenario(control_configs()[0], settings.overrides, shared_units()));
+  const auto& errors = results[0].estimation_errors;
+  REQUIRE(errors.size() > 100);
+  REQUIRE(errors.size() <= trace.time.size());
+  const std::size_t first = trace.time.size() - errors.size();
+  for (std::size_t k = 0; k < errors.size(); ++k) {
+    const double expected =
+        trace["estimator/deflection"][first + k] - trace["muscle/deflection"][first + k];
+    REQUIRE(errors[k] == Approx(expected).margin(1e-12));
+  }
+}
+
 TEST_CASE("Force control at Table 7.2 reaches the published bandwidth, set by the power limits") {
   ControlTaskSettings settings;
   const auto results = run_control_tasks({control_configs()[3]}, settings, shared_units());

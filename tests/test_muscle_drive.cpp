@@ -86,15 +86,25 @@ TEST_CASE("The decay time is L / R ln(i0 / i_th), located on the simulated decay
   CHECK(decay_time(0.020) == Approx(0.49058e-6).epsilon(1e-4));
 }
 
-TEST_CASE("The drive's average power follows the quadratic duty law (7.2)") {
-  // Prescribed power P: duty D = sqrt(P / P_full), on for D^2 of each period.
-  const Trace trace = simulate(drive_yaml("averaged"));
+TEST_CASE("The switched drive heats the muscle with the power of the quadratic duty law (7.2)") {
+  // The switched drive turns the supply on for D^2 of each 50 ms period, D = sqrt(P / P_full):
+  // the muscle's thermal force then follows dF_T/dt = kappa_P P - kappa_c F_T (7.1) with the
+  // demanded P on average. Solved here for the demanded steps (0.5 W, 3 W from 5 s, 1 W from
+  // 12 s). At period boundaries the pulse train differs from its average by under
+  // kappa_c T / 2 = 0.33 % of the heating; 1 % is allowed.
+  const Trace trace = simulate(drive_yaml("switched"));
+  const double kappa_c = 131.6e-3;
+  const auto demand = [](double t) { return t < 5 - 1e-9 ? 0.5 : t < 12 - 1e-9 ? 3.0 : 1.0; };
+  double expected = 0.0, previous_time = 0.0;
   for (std::size_t k = 0; k < trace.time.size(); ++k) {
     const double t = trace.time[k];
-    if (std::fmod(t, 1.0) > 1e-9) continue;
-    const double power = t < 5 ? 0.5 : t < 12 ? 3.0 : 1.0;
-    CHECK(trace["drive/power"][k] == Approx(power).epsilon(1e-12));
-    CHECK(trace["drive/duty"][k] == Approx(std::sqrt(power / kFullPower)).epsilon(1e-12));
+    const double settled = kappa_P * demand(previous_time) / kappa_c;
+    expected = settled + (expected - settled) * std::exp(-kappa_c * (t - previous_time));
+    previous_time = t;
+    if (std::abs(std::remainder(t, 1.0)) > 1e-9 || t < 1.0) continue;
+    INFO("t = " << t << " s");
+    CHECK(trace["muscle/thermal_force"][k] == Approx(expected).epsilon(0.01));
+    CHECK(trace["drive/duty"][k] == Approx(std::sqrt(demand(t) / kFullPower)).epsilon(1e-12));
   }
 }
 

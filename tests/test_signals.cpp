@@ -1,8 +1,10 @@
 // Excitation signals: the thesis' multisine and random steps, and the breakpoints all declare.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <numeric>
 
 #include "signals/log_sweep_signal.h"
 #include "signals/multisine_signal.h"
@@ -47,6 +49,30 @@ TEST_CASE(
                 frequencies[static_cast<std::size_t>(i - 2)] ==
             Approx((kHigh - kLow) / 10));
     }
+  }
+}
+
+TEST_CASE("A Schroeder multisine's crest factor is its peak over the analytic rms sqrt(N/2)") {
+  // N unit sines on the harmonics of f0 have, over the period 1 / f0, the mean square N / 2
+  // exactly. The peak is found here from (7.11)-(7.12) evaluated directly, on a grid of 1000
+  // points per period of the fastest tone.
+  const double f0 = 0.01;
+  for (int components : {7, 11}) {
+    const auto schroeder = MultisineSignal::schroeder(components, f0, f0 * components, 0.0);
+    const int points = 1000 * components;
+    double peak = 0.0;
+    for (int k = 0; k < points; ++k) {
+      const double t = static_cast<double>(k) / points / f0;
+      double sum = 0.0;
+      for (int i = 1; i <= components; ++i) {
+        const double phase = -std::numbers::pi * i * i / components;   // (7.12)
+        sum += std::sin(2.0 * std::numbers::pi * i * f0 * t + phase);  // (7.11)
+      }
+      peak = std::max(peak, std::abs(sum));
+    }
+    const double expected = peak / std::sqrt(components / 2.0);
+    INFO(components << " components: expected crest factor " << expected);
+    CHECK(schroeder.crest_factor(1.0 / f0) == Approx(expected).epsilon(1e-4));
   }
 }
 
@@ -104,19 +130,37 @@ TEST_CASE(
   CHECK(high == Approx(3.12));
 }
 
-TEST_CASE("Random-step sizes stay within a quarter of the range before scaling") {
+TEST_CASE("Random-step sizes are uniform on [0, a quarter of the range] before scaling (7.13)") {
   RandomStepsSettings settings;
   settings.low = 0.0, settings.high = 1.0, settings.process_time_constant = 2.0;
-  settings.sample_rate = 10.0, settings.duration = 1000.0, settings.scale_to_range = false;
+  settings.sample_rate = 10.0, settings.duration = 2e4, settings.scale_to_range = false;
   RandomStream stream(3, "sizes");
   const auto steps = make_random_steps(settings, stream);
+  std::vector<double> sizes;
   double previous = 0.5;
+  long outside = 0;
   for (double value : steps->values()) {
-    CHECK(std::abs(value - previous) <= 0.25 + 1e-15);
-    CHECK(value >= 0.0);
-    CHECK(value <= 1.0);
+    if (value < 0.0 || value > 1.0) ++outside;
+    sizes.push_back(std::abs(value - previous));
     previous = value;
   }
+  CHECK(outside == 0);
+  REQUIRE(sizes.size() > 10000);
+  // A step reversed at a bound keeps its size, so every size is a draw of U(0, 0.25): mean
+  // 0.125, standard deviation 0.25 / sqrt(12). Four standard errors on the mean, and the
+  // Kolmogorov-Smirnov distance to U(0, 0.25) under its 0.1 % critical value 1.95 / sqrt(n).
+  const double n = static_cast<double>(sizes.size());
+  const double mean = std::accumulate(sizes.begin(), sizes.end(), 0.0) / n;
+  CHECK(std::abs(mean - 0.125) < 4.0 * (0.25 / std::sqrt(12.0)) / std::sqrt(n));
+  std::sort(sizes.begin(), sizes.end());
+  CHECK(sizes.back() <= 0.25);
+  double distance = 0.0;
+  for (std::size_t i = 0; i < sizes.size(); ++i) {
+    const double cdf = sizes[i] / 0.25;
+    distance = std::max({distance, std::abs(cdf - static_cast<double>(i) / n),
+                         std::abs(cdf - static_cast<double>(i + 1) / n)});
+  }
+  CHECK(distance < 1.95 / std::sqrt(n));
 }
 
 TEST_CASE("Random signals are reproducible from the seed and differ between seeds and keys") {
