@@ -2,15 +2,15 @@
 """Mutation check of the test suite (issue 15): does a one-line bug in the physics or the
 analyses turn the suite red?
 
-Copies the committed tree (git archive of HEAD) to a scratch directory, builds it once
-(Release), then for each mutation in tests/mutants/mutants.yaml: applies it, rebuilds
+Copies the committed tree (git archive of HEAD) to a scratch directory (rewriting only what
+changed since the last use, so its build stays incremental), builds it (Release), then for each mutation in tests/mutants/mutants.yaml: applies it, rebuilds
 incrementally, runs ctest, records whether a test failed (killed), none did (survived) or the
 mutant did not compile (invalid), and restores the file. A mutant that survives but is marked
 `equivalent: REASON` in the list (it changes nothing a test could see) is reported as such and
 left out of the kill rate. Prints a table and the kill rate, and
 writes them as JSON. The source tree is never touched.
 
-    scripts/mutants.py [--scratch DIR] [--only SUBSTRING] [--tests REGEX] [--json FILE]
+    scripts/mutants.py [--scratch DIR] [--only SUBSTRING]... [--tests REGEX] [--json FILE]
 
 Not part of CI: every mutant rebuilds and reruns the suite, minutes each on 2 cores.
 """
@@ -18,6 +18,7 @@ import argparse
 import json
 import os
 import pathlib
+import shutil
 import subprocess
 import sys
 import time
@@ -34,13 +35,33 @@ def run(command, cwd, log):
         return subprocess.run(command, cwd=cwd, stdout=out, stderr=subprocess.STDOUT).returncode
 
 
+def sync_source(scratch):
+    """scratch/src becomes HEAD's tree; only files whose content changed are rewritten (with a
+    new modification time), so an earlier build of it stays valid for the rest."""
+    source, incoming = scratch / "src", scratch / "incoming"
+    shutil.rmtree(incoming, ignore_errors=True)
+    incoming.mkdir(parents=True)
+    archive = subprocess.run(["git", "archive", "HEAD"], cwd=ROOT, check=True,
+                             stdout=subprocess.PIPE).stdout
+    subprocess.run(["tar", "-x", "-C", str(incoming)], input=archive, check=True)
+    wanted = {p.relative_to(incoming) for p in incoming.rglob("*") if p.is_file()}
+    for relative in sorted(wanted):
+        target = source / relative
+        content = (incoming / relative).read_bytes()
+        if not target.is_file() or target.read_bytes() != content:
+            target.parent.mkdir(parents=True, exist_ok=True)
+            target.write_bytes(content)
+            shutil.copymode(incoming / relative, target)
+    if source.exists():
+        for path in [p for p in source.rglob("*") if p.is_file()]:
+            if path.relative_to(source) not in wanted:
+                path.unlink()
+    shutil.rmtree(incoming)
+    return source
+
+
 def prepare(scratch, log):
-    source = scratch / "src"
-    if not source.exists():
-        source.mkdir(parents=True)
-        archive = subprocess.run(["git", "archive", "HEAD"], cwd=ROOT, check=True,
-                                 stdout=subprocess.PIPE).stdout
-        subprocess.run(["tar", "-x", "-C", str(source)], input=archive, check=True)
+    source = sync_source(scratch)
     build = scratch / "build"
     if run(["cmake", "-S", str(source), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release",
             "-DTCPMSIM_BUILD_TESTS=ON"], scratch, log) != 0:
@@ -75,13 +96,15 @@ def mutate(source, mutant):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--scratch", default="/tmp/tcpmsim-mutants", type=pathlib.Path)
-    parser.add_argument("--only", help="only mutants whose file or reason contains this")
+    parser.add_argument("--only", action="append",
+                        help="only mutants whose file or reason contains this (repeatable)")
     parser.add_argument("--tests", help="ctest -R regular expression (default: the whole suite)")
     parser.add_argument("--json", type=pathlib.Path, help="write the results here too")
     args = parser.parse_args()
     mutants = yaml.safe_load((ROOT / "tests/mutants/mutants.yaml").read_text())
     if args.only:
-        mutants = [m for m in mutants if args.only in m["file"] or args.only in m["why"]]
+        mutants = [m for m in mutants
+                   if any(only in m["file"] or only in m["why"] for only in args.only)]
     args.scratch.mkdir(parents=True, exist_ok=True)
     log = args.scratch / "mutants.log"
     source, build = prepare(args.scratch, log)
