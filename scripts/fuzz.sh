@@ -13,8 +13,8 @@ seconds=${1:-60}
 shift || true
 [[ ${1:-} == -- ]] && shift
 scripts/install-deps.sh
-# TCPMSIM_FUZZ_BUILD_DIR: a tree already configured with TCPMSIM_FUZZ=ON (CI fuzzes its sanitizer
-# tree, built by scripts/test.sh); by default build-fuzz, configured here.
+# TCPMSIM_FUZZ_BUILD_DIR: a tree already configured with TCPMSIM_FUZZ=ON (e.g. one built by
+# `CC=clang CXX=clang++ TCPMSIM_FUZZ=ON scripts/test.sh`); by default build-fuzz, configured here.
 build=${TCPMSIM_FUZZ_BUILD_DIR:-build-fuzz}
 if [[ ! -f $build/CMakeCache.txt ]]; then
   CC=clang CXX=clang++ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTCPMSIM_FUZZ=ON \
@@ -47,7 +47,8 @@ seeds() {  # the seed directory of a target, made afresh from the repository's i
 # -timeout=60: the magnetic bundle (configs/bundle/magnetic_coupling.yaml) computes its mutual
 # inductances when it loads, 0.6 s in Release and over 10 s instrumented.
 # fuzz/regressions/<target> holds every input fuzzing has found to fail: each is run first.
-# tests/lsan.supp names the leaks that are a library's own (udunits2's parser).
+# scripts/sanitizer_options.sh sets the sanitizers' options, with tests/lsan.supp.
+source scripts/sanitizer_options.sh
 for target in "${targets[@]}"; do
   corpus=$build/corpus/$target
   mkdir -p "$corpus"
@@ -57,9 +58,7 @@ for target in "${targets[@]}"; do
   rm -f "$build/$target-"{crash,leak,timeout,oom}-*
   log=$build/$target.log
   echo "fuzz: $target for ${seconds} s ($(ls "$seed_dir" | wc -l) seeds, $(ls "$corpus" | wc -l) in the corpus)"
-  ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-    LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp print_suppressions=0" \
-    "$build/fuzz/$target" "$corpus" "$seed_dir" "${regressions[@]}" -max_total_time="$seconds" \
+  "$build/fuzz/$target" "$corpus" "$seed_dir" "${regressions[@]}" -max_total_time="$seconds" \
     -max_len=65536 -timeout=60 -rss_limit_mb=2048 -artifact_prefix="$build/$target-" \
     -print_final_stats=1 "$@" >"$log" 2>&1 || true
   grep -E "^(#[0-9]+ +DONE|stat::number_of_executed_units|stat::peak_rss)|Done [0-9]+ runs" "$log" || true

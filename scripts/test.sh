@@ -21,6 +21,5 @@ build_dir="${TCPMSIM_BUILD_DIR:-$default_dir}"
 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE="$build_type" -DTCPMSIM_SANITIZE="$sanitize" -DTCPMSIM_BUILD_TESTS=ON \
   -DTCPMSIM_FUZZ="${TCPMSIM_FUZZ:-OFF}"
 cmake --build "$build_dir" -j"$(nproc)" ${TCPMSIM_BUILD_TARGETS:+--target $TCPMSIM_BUILD_TARGETS}
-ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp print_suppressions=0" \
-  UBSAN_OPTIONS=print_stacktrace=1 TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" \
-  ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)" ${TCPMSIM_TEST_FILTER:+-R "$TCPMSIM_TEST_FILTER"}
+source scripts/sanitizer_options.sh
+ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)" ${TCPMSIM_TEST_FILTER:+-R "$TCPMSIM_TEST_FILTER"}

@@ -34,7 +34,7 @@ load: {type: deflection, deflection: {type: sine, offset: 20 mm, amplitude: 5 mm
 }
 
 constexpr double kPeriod = 0.05, kFullPower = 10.18 * (7.0 / 10.75) * (7.0 / 10.75),
-                 kappa_P = 7.2e-3;
+                 kappa_P = 7.2e-3, kappa_c = 131.6e-3;
 
 double decay_time(double deflection) {
   const double inductance = 7.45e-9 / (deflection + 0.0288) + 1.14799e-6;
@@ -93,7 +93,6 @@ TEST_CASE("The switched drive heats the muscle with the power of the quadratic d
   // 12 s). At period boundaries the pulse train differs from its average by under
   // kappa_c T / 2 = 0.33 % of the heating; 1 % is allowed.
   const Trace trace = simulate(drive_yaml("switched"));
-  const double kappa_c = 131.6e-3;
   const auto demand = [](double t) { return t < 5 - 1e-9 ? 0.5 : t < 12 - 1e-9 ? 3.0 : 1.0; };
   double expected = 0.0, previous_time = 0.0;
   for (std::size_t k = 0; k < trace.time.size(); ++k) {

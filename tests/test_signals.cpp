@@ -4,8 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <numeric>
+#include <vector>
 
+#include "analysis/statistics.h"
 #include "signals/log_sweep_signal.h"
 #include "signals/multisine_signal.h"
 #include "signals/periodic_signal.h"
@@ -150,7 +151,7 @@ TEST_CASE("Random-step sizes are uniform on [0, a quarter of the range] before s
   // 0.125, standard deviation 0.25 / sqrt(12). Four standard errors on the mean, and the
   // Kolmogorov-Smirnov distance to U(0, 0.25) under its 0.1 % critical value 1.95 / sqrt(n).
   const double n = static_cast<double>(sizes.size());
-  const double mean = std::accumulate(sizes.begin(), sizes.end(), 0.0) / n;
+  const double mean = analysis::mean(sizes);
   CHECK(std::abs(mean - 0.125) < 4.0 * (0.25 / std::sqrt(12.0)) / std::sqrt(n));
   std::sort(sizes.begin(), sizes.end());
   CHECK(sizes.back() <= 0.25);
