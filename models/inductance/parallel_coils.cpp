@@ -3,52 +3,31 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
-#include <vector>
 
-#include "models/inductance/constants.h"
+#include "models/inductance/loop_mutual.h"
 
 namespace tcpmsim::inductance {
 
 namespace {
 
-constexpr int kFirstPoints = 32;
-constexpr int kMostPoints = 1 << 12;
+constexpr int kFirstIntervals = 8;  // over [0, pi]
+constexpr int kMostIntervals = 1 << 16;
 constexpr double kAgreement = 1e-12;
 
-struct TrapezoidSum {
-  double value = 0.0;      // of cos(t1 - t2) / R
-  double magnitude = 0.0;  // of |cos(t1 - t2)| / R: the scale rounding and agreement refer to
-};
-
-// The trapezoidal sums over n x n points (without the weights).
-TrapezoidSum trapezoid_sum(double a, double b, double lateral, double axial, int n) {
-  std::vector<double> cosines(static_cast<std::size_t>(n)), sines(static_cast<std::size_t>(n));
-  for (int k = 0; k < n; ++k) {
-    const double angle = 2.0 * std::numbers::pi * k / n;
-    cosines[static_cast<std::size_t>(k)] = std::cos(angle);
-    sines[static_cast<std::size_t>(k)] = std::sin(angle);
-  }
-  const double axial2 = axial * axial;
-  TrapezoidSum sum;
-  for (int i = 0; i < n; ++i) {
-    const double x1 = a * cosines[static_cast<std::size_t>(i)] - lateral;
-    const double y1 = a * sines[static_cast<std::size_t>(i)];
-    double row = 0.0, row_magnitude = 0.0;
-    for (int j = 0; j < n; ++j) {
-      const double c2 = cosines[static_cast<std::size_t>(j)];
-      const double s2 = sines[static_cast<std::size_t>(j)];
-      const double dx = x1 - b * c2;
-      const double dy = y1 - b * s2;
-      const double alignment =
-          cosines[static_cast<std::size_t>(i)] * c2 + sines[static_cast<std::size_t>(i)] * s2;
-      const double inverse_distance = 1.0 / std::sqrt(dx * dx + dy * dy + axial2);
-      row += alignment * inverse_distance;
-      row_magnitude += std::abs(alignment) * inverse_distance;
-    }
-    sum.value += row;
-    sum.magnitude += row_magnitude;
-  }
-  return sum;
+// The integrand of M = int_0^2pi f(phi) dphi: the flux of the first ring's vector potential
+// A(rho, z) = M_coax(a, rho, z) / (2 pi rho) along the second ring, whose point at angle phi
+// sits at distance rho from the first ring's axis and moves along it at the rate
+// b (b + lateral cos phi) / rho:
+//   f(phi) = b (b + lateral cos phi) M_coax(a, rho, axial) / (2 pi rho^2),
+//   rho^2 = lateral^2 + b^2 + 2 lateral b cos phi.
+// Where the second ring crosses the axis (rho = 0, lateral = b, phi = pi) the factor
+// b + lateral cos phi vanishes and A stays finite: f = 0.
+double flux_rate(double a, double b, double lateral, double axial, double phi) {
+  const double cosine = std::cos(phi);
+  const double rho2 = lateral * lateral + b * b + 2.0 * lateral * b * cosine;
+  if (!(rho2 > 0.0)) return 0.0;
+  return b * (b + lateral * cosine) * coaxial_loops_mutual_inductance(a, std::sqrt(rho2), axial) /
+         (2.0 * std::numbers::pi * rho2);
 }
 
 }  // namespace
@@ -62,21 +41,35 @@ double parallel_loops_mutual_inductance(double a, double b, double lateral, doub
   // Coplanar circles meet where |a - b| <= lateral <= a + b.
   if (axial == 0.0 && lateral >= std::abs(a - b) && lateral <= a + b)
     throw std::domain_error("parallel_loops_mutual_inductance: the rings meet");
-  const double weight = mu0 * a * b / (4.0 * std::numbers::pi);
+  if (lateral == 0.0) return coaxial_loops_mutual_inductance(a, b, axial);
+  // f is even and 2 pi periodic: M = 2 int_0^pi f, by the trapezoidal rule, which converges
+  // geometrically for a smooth periodic integrand. The intervals are doubled (the new points
+  // are the odd ones) until two estimates agree to 1e-12 of the integral of |f| (side by side
+  // M is a small difference of large parts).
+  const auto f = [&](double phi) { return flux_rate(a, b, lateral, axial, phi); };
+  const double end_0 = f(0.0), end_pi = f(std::numbers::pi);
+  double ends = 0.5 * (end_0 + end_pi), ends_magnitude = 0.5 * (std::abs(end_0) + std::abs(end_pi));
+  double inner = 0.0, inner_magnitude = 0.0;
   double previous = 0.0;
-  for (int n = kFirstPoints; n <= kMostPoints; n *= 2) {
-    const double scale = weight * std::pow(2.0 * std::numbers::pi / n, 2);
-    const TrapezoidSum sum = trapezoid_sum(a, b, lateral, axial, n);
-    const double estimate = scale * sum.value;
-    // Side by side the integral is a small difference of large parts: agreement is judged
-    // against the parts' size, below which rounding leaves nothing to gain.
-    if (n > kFirstPoints && std::abs(estimate - previous) <= kAgreement * scale * sum.magnitude)
+  for (int n = kFirstIntervals, added = 1; n <= kMostIntervals; n *= 2) {
+    // The points of n intervals not already in the sums: odd multiples of pi / n (all of them
+    // when n is the first count).
+    for (int k = 1; k < n; k += added) {
+      const double value = f(std::numbers::pi * k / n);
+      inner += value;
+      inner_magnitude += std::abs(value);
+    }
+    added = 2;
+    const double width = std::numbers::pi / n;
+    const double estimate = 2.0 * width * (ends + inner);
+    const double magnitude = 2.0 * width * (ends_magnitude + inner_magnitude);
+    if (n > kFirstIntervals && std::abs(estimate - previous) <= kAgreement * magnitude)
       return estimate;
     previous = estimate;
   }
   throw std::domain_error(
-      "parallel_loops_mutual_inductance: no convergence with 4096 points per angle: the rings "
-      "nearly meet");
+      "parallel_loops_mutual_inductance: no convergence with 65536 intervals: the rings nearly "
+      "meet");
 }
 
 double parallel_coils_mutual_inductance(const CoilGeometry& coil, double separation) {
