@@ -9,8 +9,7 @@
 #include "analysis/spring_forces.h"
 #include "analysis/spring_modes.h"
 #include "models/coil_spring_chain.h"
-#include "models/inductance/loop_mutual.h"
-#include "models/inductance/maxwell.h"
+#include "models/inductance/rosa.h"
 #include "tests/support/test_support.h"
 
 using namespace tcpmsim;
@@ -65,15 +64,47 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "Inductance sensing at the preload reproduces F_x, because the fit (4.13) is constrained "
-    "there") {
-  const Trace trace = simulate(spring_yaml());
-  CHECK(trace["spring/inductance_force"].front() ==
-        Approx(trace["spring/deflection_force"].front()).epsilon(1e-9));
-  // At the preload the 52 windings are evenly spaced over 230 mm: Maxwell's ring stack (2.13).
-  CHECK(trace["spring/inductance"].front() ==
-        Approx(inductance::maxwell_ring_stack(8e-3, inductance::wire_gmd(2e-3), 52, 0.230 / 52))
-            .epsilon(1e-11));
+    "Inductance sensing reproduces F_x at the preload and errs elsewhere by the curvature of "
+    "(4.13), as Rosa's independent formula (2.7)-(2.10) predicts") {
+  // Rosa's round-wire correction of Nagaoka's current sheet is a different route to the same
+  // inductance as the chain's ring sum (2.13): the two differ by how each treats the wire, 0.1-0.2
+  // % over this range. (The misprinted self-term gmd of (4.10), or any slip of the sum, would
+  // move L by several per cent.)
+  const auto rosa = [](double length) {
+    return inductance::rosa_inductance({8e-3, length, 52.0, 2e-3});
+  };
+  const Trace at_preload = simulate(spring_yaml());
+  CHECK(at_preload["spring/inductance"].front() == Approx(rosa(0.230)).epsilon(2e-3));
+  CHECK(at_preload["spring/inductance_force"].front() ==
+        Approx(at_preload["spring/deflection_force"].front()).epsilon(1e-9));
+
+  // (4.13) fitted to Rosa's L over the operating range, through the preload point: 1/l =
+  // alpha L + beta, alpha = sum dL d(1/l) / sum dL^2 about the preload (25 lengths).
+  const double preload = 0.230, shortest = 0.196, longest = 0.264;
+  double covariance = 0.0, variance = 0.0;
+  for (int k = 0; k < 25; ++k) {
+    const double length = shortest + (longest - shortest) * k / 24.0;
+    const double dL = rosa(length) - rosa(preload);
+    covariance += dL * (1.0 / length - 1.0 / preload);
+    variance += dL * dL;
+  }
+  const double alpha = covariance / variance, beta = 1.0 / preload - alpha * rosa(preload);
+  // Held statically at other lengths, the spring's inductance-based force misses k (l - l0) by
+  // what the straight line in 1/L cannot follow: with Rosa's L, 760 N/m (1/(alpha L + beta) - l),
+  // -0.20 N at 196 mm, -0.11 N at 247 mm, -0.41 N at 264 mm. A wrong slope alpha moves these
+  // by 68 mm x 760 N/m = 52 N per unit of relative error.
+  for (const double length : {0.196, 0.213, 0.247, 0.264}) {
+    INFO("held at " << length * 1e3 << " mm");
+    const Trace held = simulate(
+        spring_yaml(), {"scenario.duration=10 ms", "spring.second_end=" + number(length) + " m",
+                        "spring.inductance.preload_length=230 mm"});
+    const double predicted_error = kStiffness * (1.0 / (alpha * rosa(length) + beta) - length);
+    const double error =
+        held["spring/inductance_force"].front() - held["spring/deflection_force"].front();
+    CHECK(held["spring/deflection_force"].front() ==
+          Approx(kStiffness * (length - kRestLength)).epsilon(1e-9));
+    CHECK(error == Approx(predicted_error).epsilon(0.06));
+  }
 }
 
 TEST_CASE("Clamped eigenfrequencies approach n pi sqrt(k/m) within the lumping's dispersion") {
