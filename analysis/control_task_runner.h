@@ -44,6 +44,19 @@ std::vector<ControlTaskResult> run_control_tasks(const std::vector<std::string>&
                                                  const ControlTaskSettings& settings,
                                                  std::shared_ptr<const UnitSystem> units);
 
+// Section 7.4's published results for one task kind, in SI units, as data: the report prints
+// them beside ours and the record keeps them (group thesis_7_4) for offline comparison.
+struct PublishedControlResults {
+  double rise_time_min = 0.0;     // [s] 10-90 %, over the steps reached (the rest hit 20 s)
+  double rise_time_max = 0.0;     // [s]
+  double bandwidth = 0.0;         // [Hz], -3 dB of the stepped-sine sweep
+  double error_mean = 0.0;        // [m] or [N], estimate minus truth over the task
+  double error_half_width = 0.0;  // [m] or [N], the 95 % band around the mean
+};
+// Deflection control: 4.2-14.1 s, 0.039 Hz, -0.27 +- 2.14 mm; force control: 2.1-5.1 s,
+// 0.056 Hz, +7.5 +- 29.0 mN.
+PublishedControlResults thesis_control_results(bool deflection);
+
 // The thesis' results (7.4) beside ours: rise-time ranges, -3 dB bandwidths and estimation
 // errors (mean and 95 % band) for deflection and force control, plus the Bode points.
 std::string format_control_task_report(const std::vector<ControlTaskResult>& results);

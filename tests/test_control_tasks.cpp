@@ -3,8 +3,11 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <complex>
 #include <filesystem>
 #include <limits>
+#include <mutex>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -12,6 +15,7 @@
 #include "analysis/control_task_runner.h"
 #include "analysis/control_tasks_command.h"
 #include "analysis/describing_function.h"
+#include "sim/io/hdf5_files.h"
 #include "tests/support/test_support.h"
 
 using namespace tcpmsim;
@@ -52,12 +56,29 @@ TEST_CASE(
   std::ostringstream out;
   run_control_tasks_command(options, out, shared_units());
   const std::string report = out.str();
+  // The thesis' numbers are data: printed from thesis_control_results as the thesis prints them
+  // (section 7.4), and kept in the record in SI units.
   CHECK_THAT(report, Catch::Contains("thesis 4.2-14.1 s"));
   CHECK_THAT(report, Catch::Contains("thesis 0.039 Hz"));
   CHECK_THAT(report, Catch::Contains("thesis 0.056 Hz"));
   CHECK_THAT(report, Catch::Contains("thesis -0.27 +- 2.14 mm"));
   CHECK_THAT(report, Catch::Contains("thesis +7.5 +- 29.0 mN"));
-  CHECK(std::filesystem::exists(options.output));
+  {
+    std::lock_guard lock(hdf5_mutex());
+    const H5::H5File file(options.output, H5F_ACC_RDONLY);
+    for (const bool deflection : {true, false}) {
+      const PublishedControlResults thesis = thesis_control_results(deflection);
+      const H5::Group group =
+          file.openGroup(std::string("thesis_7_4/") + (deflection ? "deflection" : "force"));
+      CHECK(read_doubles(group, "rise_time_range") ==
+            std::vector<double>{thesis.rise_time_min, thesis.rise_time_max});
+      CHECK(read_doubles(group, "bandwidth") == std::vector<double>{thesis.bandwidth});
+      CHECK(read_doubles(group, "estimation_error_mean") == std::vector<double>{thesis.error_mean});
+      CHECK(read_doubles(group, "estimation_error_half_width_95") ==
+            std::vector<double>{thesis.error_half_width});
+    }
+  }
+  std::filesystem::remove(options.output);
 }
 
 TEST_CASE("Calibration adds its measured offsets to those the scenario configures") {
@@ -107,7 +128,48 @@ TEST_CASE("Force control at Table 7.2 reaches the published bandwidth, set by th
   // bandwidth is the power range's, which our plant (Table 7.2 itself) shares with the thesis'.
   // The thesis prints two digits (+-0.9 %) and the sweep interpolates within 0.7 %
   // (test_control_analysis); the rest is its real muscle against the Table 7.2 model.
-  CHECK(*results[0].bandwidth == Approx(0.056).epsilon(0.03));
+  CHECK(*results[0].bandwidth == Approx(thesis_control_results(false).bandwidth).epsilon(0.03));
+}
+
+TEST_CASE(
+    "Both sweeps' bandwidths, ours and the thesis', lie under the bound the power limits set") {
+  // Powers within [P_min, P_max] have a fundamental of at most (4/pi)(P_max - P_min)/2 (a square
+  // wave's), and from P to the controlled quantity the plant is linear: (7.1) gives F_T =
+  // kappa_P / (j w + kappa_c) P; at fixed deflection the force follows F_T, and under a fixed
+  // force the deflection follows -F_T / K(w), K = k1 + k2 j w tau / (1 + j w tau), tau = c / k2
+  // (7.5)-(7.6). The response's fundamental can reach the -3 dB level (1/sqrt 2 of the
+  // reference's amplitude: 5 mm, 50 mN) only below the frequency where that largest amplitude
+  // equals it.
+  constexpr double k2 = 2.7, tau = 4.3 / 2.7;
+  const auto largest_amplitude = [&](double frequency, bool deflection) {
+    const std::complex<double> jw(0.0, 2.0 * std::numbers::pi * frequency);
+    const double thermal =
+        kappa_P * (2.0 / std::numbers::pi) * (P_max - P_min) / std::abs(jw + kappa_c);
+    return deflection ? thermal / std::abs(k1 + k2 * jw * tau / (1.0 + jw * tau)) : thermal;
+  };
+  const auto bound = [&](bool deflection, double amplitude) {
+    double low = 1e-3, high = 1.0;  // the largest amplitude falls with frequency: bisect
+    for (int i = 0; i < 60; ++i) {
+      const double middle = std::sqrt(low * high);
+      (largest_amplitude(middle, deflection) > amplitude / std::sqrt(2.0) ? low : high) = middle;
+    }
+    return low;
+  };
+  ControlTaskSettings settings;
+  const auto results =
+      run_control_tasks({control_configs()[1], control_configs()[3]}, settings, shared_units());
+  for (const auto& result : results) {
+    const bool deflection = result.controls_deflection;
+    const double limit = bound(deflection, deflection ? 5e-3 : 50e-3);
+    INFO((deflection ? "deflection" : "force") << " sweep: bound " << limit << " Hz");
+    REQUIRE(result.bandwidth.has_value());
+    CHECK(*result.bandwidth <= limit);
+    CHECK(thesis_control_results(deflection).bandwidth <= limit);
+    // The gains saturate the drive on every cycle, a relay whose power is the square wave: the
+    // loop comes close to the bound (ours within 10 %; the thesis' hardware deflection loop,
+    // with lags the model leaves out, at 0.039 Hz, 22 % below it).
+    CHECK(*result.bandwidth >= 0.9 * limit);
+  }
 }
 
 TEST_CASE("A plant that heats harder than the estimator's model biases only the force estimate") {
