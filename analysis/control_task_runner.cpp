@@ -174,9 +174,10 @@ PublishedControlResults thesis_control_results(bool deflection) {
 std::string format_control_task_report(const std::vector<ControlTaskResult>& results) {
   std::string text = "Thesis chapter 7 control tasks (section 7.4), ours against the thesis\n";
   char line[256];
-  char thesis[96];
-  const auto add_row = [&](const char* quantity, const std::string& ours) {
-    std::snprintf(line, sizeof line, "  %-24s %-34s thesis %s\n", quantity, ours.c_str(), thesis);
+  char thesis[96];  // the thesis' value of the row, formatted from thesis_control_results
+  const auto add_row = [&](const char* quantity, const std::string& ours, const char* published) {
+    std::snprintf(line, sizeof line, "  %-24s %-34s thesis %s\n", quantity, ours.c_str(),
+                  published);
     text += line;
   };
   for (bool deflection : {true, false}) {
@@ -187,14 +188,14 @@ std::string format_control_task_report(const std::vector<ControlTaskResult>& res
     text += deflection ? "\nDeflection control:\n" : "\nForce control:\n";
     std::snprintf(thesis, sizeof thesis, "%.1f-%.1f s, outliers at 20 s", published.rise_time_min,
                   published.rise_time_max);
-    add_row("rise times (10-90 %)", range_text(summary.rise_times, summary.outliers));
+    add_row("rise times (10-90 %)", range_text(summary.rise_times, summary.outliers), thesis);
     std::string bandwidth = "not bracketed by the sweep";
     if (summary.bandwidth) {
       std::snprintf(line, sizeof line, "%.3f Hz", *summary.bandwidth);
       bandwidth = line;
     }
     std::snprintf(thesis, sizeof thesis, "%.3f Hz", published.bandwidth);
-    add_row("-3 dB bandwidth", bandwidth);
+    add_row("-3 dB bandwidth", bandwidth, thesis);
     // Both estimates are reported in milli-units: mm for deflection (two decimals, as the
     // thesis prints them), mN for force (one).
     const int decimals = deflection ? 2 : 1;
@@ -203,7 +204,7 @@ std::string format_control_task_report(const std::vector<ControlTaskResult>& res
                   decimals, 1e3 * published.error_half_width, unit);
     std::snprintf(line, sizeof line, "%+.2f +- %.2f %s (mean, 95 %% band)", 1e3 * errors.mean,
                   1e3 * errors.half_width_95, unit);
-    add_row("estimation error", line);
+    add_row("estimation error", line, thesis);
   }
   for (const auto& result : results) {
     std::snprintf(line, sizeof line,

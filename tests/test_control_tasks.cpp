@@ -23,8 +23,8 @@ using namespace tcpmsim::testing;
 
 namespace {
 // Table 7.2.
-constexpr double kappa_P = 7.2e-3, kappa_c = 131.6e-3, k1 = 10.8, phi0 = 106.9e-3, P_min = 0.10,
-                 P_max = 3.12;
+constexpr double kappa_P = 7.2e-3, kappa_c = 131.6e-3, k1 = 10.8, k2 = 2.7, damping = 4.3,
+                 phi0 = 106.9e-3, P_min = 0.10, P_max = 3.12;
 
 std::vector<std::string> control_configs() {
   std::vector<std::string> configs;
@@ -160,7 +160,7 @@ TEST_CASE(
   // (7.5)-(7.6). The response's fundamental can reach the -3 dB level (1/sqrt 2 of the
   // reference's amplitude: 5 mm, 50 mN) only below the frequency where that largest amplitude
   // equals it.
-  constexpr double k2 = 2.7, tau = 4.3 / 2.7;
+  constexpr double tau = damping / k2;
   const auto largest_amplitude = [&](double frequency, bool deflection) {
     const std::complex<double> jw(0.0, 2.0 * std::numbers::pi * frequency);
     const double thermal =

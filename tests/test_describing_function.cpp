@@ -447,6 +447,7 @@ TEST_CASE("The deflection loop's proportional margin is where the engine's loop 
   // with power limits far beyond the swings (no saturation). Growth: the power's largest swing
   // over the last fifth of the run against the second fifth.
   const PowerLimits wide{-1e3, 1e3};
+  const double rest = equilibrium_power(0.40, 20e-3, kHeating, kCooling, kMechanics);
   struct Settling {
     double growth;     // late swing / early swing
     double frequency;  // [Hz] of the power's oscillation after the first fifth
@@ -456,7 +457,6 @@ TEST_CASE("The deflection loop's proportional margin is where the engine's loop 
     gains.proportional *= factor * margin;
     const auto run = run_deflection_loop(gains, duration, {wide, 1e-6, median_length});
     const auto& power = run["controller/power_command"];
-    const double rest = equilibrium_power(0.40, 20e-3, kHeating, kCooling, kMechanics);
     double early = 0.0, late = 0.0;
     for (std::size_t i = 0; i < run.time.size(); ++i) {
       const double swing = std::abs(power[i] - rest);
@@ -477,7 +477,7 @@ TEST_CASE("The deflection loop's proportional margin is where the engine's loop 
   const double linear_margin = *proportional_gain_margin(linear);
   PidGains critical = kThesisDeflection;
   critical.proportional *= linear_margin;
-  const auto at_margin = predict_limit_cycle(linear.with_gains(critical), wide, 1.41);
+  const auto at_margin = predict_limit_cycle(linear.with_gains(critical), wide, rest);
   REQUIRE_FALSE(at_margin.crossings.empty());
   const auto onset = std::max_element(
       at_margin.crossings.begin(), at_margin.crossings.end(),
