@@ -259,6 +259,18 @@ int fit(const Options& options) {
 }
 
 // The missing effect: a base model fitted, diagnosed, and refitted with each named effect.
+// The plotting script: beside the program when installed (bin/tcpmsim-plot), else the source
+// tree's tools/tcpmsim-plot.
+std::string plot_tool() {
+  std::error_code error;
+  const auto program = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (!error) {
+    const auto beside = program.parent_path() / "tcpmsim-plot";
+    if (std::filesystem::is_regular_file(beside, error)) return beside.string();
+  }
+  return TCPMSIM_PLOT_TOOL;
+}
+
 int discover(const Options& options) {
   auto units = std::make_shared<tcpmsim::UnitSystem>();
   tcpmsim::fit::DiscoverRequest request = options.discover;
@@ -279,8 +291,8 @@ int discover(const Options& options) {
   const auto written = tcpmsim::fit::write_discovery(directory, discovery);
   if (options.plots) {
     // The residuals before and after, and the diagnostic that gave the effect away.
-    const std::string command = std::string("'") + TCPMSIM_PLOT_TOOL + "' discovery '" + directory +
-                                "' -o '" + directory + "'";
+    const std::string command =
+        "'" + plot_tool() + "' discovery '" + directory + "' -o '" + directory + "'";
     if (std::system(command.c_str()) != 0)
       throw std::runtime_error("the plots of " + directory + " could not be drawn (" + command +
                                "); --no-plots leaves them out");

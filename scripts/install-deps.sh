@@ -18,6 +18,7 @@ packages=(
   libboost-dev                             # Boost.Math: the chi-squared tail of the Ljung-Box test
   clang libclang-rt-14-dev                 # libFuzzer targets (scripts/fuzz.sh)
   python3 python3-h5py python3-numpy python3-matplotlib python3-scipy  # plots, benchmark
+  python3-dev pybind11-dev                 # the Python module (pybind11: the standard C++ binding)
 )
 
 missing=()

@@ -54,6 +54,18 @@ void check_record_size(const Scenario& scenario, double limit_bytes) {
                         "--max-output-size");
 }
 
+RecordMetadata record_metadata(const Scenario& scenario) {
+  return {scenario.settings.name,
+          scenario.source,
+          scenario.resolved_yaml,
+          scenario.settings.seed,
+          scenario.solver.relative_tolerance,
+          linear_solver_name(scenario.solver.linear_solver),
+          scenario.settings.output_interval,
+          scenario.settings.duration,
+          scenario.settings.compression_level};
+}
+
 SolverStatistics integrate(const Scenario& scenario, Context& context, OutputSink& sink,
                            const Integrator::Progress& progress) {
   Integrator integrator(*scenario.system, context, scenario.solver);
@@ -79,15 +91,7 @@ RunOutcome run_scenario(const Scenario& scenario, Context& context, const std::s
   const auto started = std::chrono::steady_clock::now();
   scenario.system->prepare(context);  // the signals as this run has them, for the record
 
-  RecordMetadata metadata{scenario.settings.name,
-                          scenario.source,
-                          scenario.resolved_yaml,
-                          scenario.settings.seed,
-                          scenario.solver.relative_tolerance,
-                          linear_solver_name(scenario.solver.linear_solver),
-                          scenario.settings.output_interval,
-                          scenario.settings.duration,
-                          scenario.settings.compression_level};
+  const RecordMetadata metadata = record_metadata(scenario);
   RunOutcome outcome;
   try {
     Hdf5Recorder recorder(output_path, *scenario.system, context, metadata);

@@ -7,6 +7,8 @@
 
 namespace tcpmsim {
 
+struct RecordMetadata;  // sim/io/record_writer.h
+
 struct RunOutcome {
   SolverStatistics statistics;
   double wall_seconds = 0.0;
@@ -36,6 +38,9 @@ RunOutcome run_scenario(const Scenario& scenario, Context& context, const std::s
                         const Integrator::Progress& progress = {});
 
 const char* linear_solver_name(LinearSolverKind kind);
+
+// What a scenario's record says about it (name, file, resolved config, seed, solver, output).
+RecordMetadata record_metadata(const Scenario& scenario);
 
 // The size of a scenario's record before compression: its output samples (output.start to the
 // end at output.rate, and the end) times its columns (time and every recorded channel, a column

@@ -2,7 +2,8 @@
 # The layers, checked on every include: the engine (sim/) names no model; signals/ and models/
 # build on the engine only (models/ never on controllers/); controllers/ on models/ and the
 # engine; kinds/ (the standard registry) sees those; analysis/, sweep/ and identification/
-# (fits and discovery) build on all of them in that order; cli/, tests/ and bench/ see it all.
+# (fits and discovery) build on all of them in that order; python/ (the module) on those; cli/,
+# tests/ and bench/ see it all.
 # Usage: check_layers.sh SOURCE_DIR
 set -uo pipefail
 cd "$1"
@@ -32,4 +33,5 @@ check kinds 'sim|signals|models|controllers|kinds'
 check analysis 'sim|signals|models|controllers|kinds|analysis|tcpmsim'
 check sweep 'sim|signals|models|controllers|kinds|analysis|sweep|tcpmsim'
 check identification 'sim|signals|models|controllers|kinds|analysis|sweep|identification|tcpmsim'
+check python 'sim|signals|models|controllers|kinds|analysis|sweep|identification|python|tcpmsim'
 exit $((failures > 0))

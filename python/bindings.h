@@ -1,0 +1,64 @@
+#pragma once
+
+// The Python module tcpmsim._core: a thin layer over the C++ API (kinds/standard_kinds.h,
+// sim/memory_run.h, sweep/run_pool.h). It holds no physics and reads no file itself.
+
+#include <pybind11/pybind11.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sim/config/units.h"
+#include "sim/memory_run.h"
+#include "sim/scenario.h"
+
+namespace tcpmsim::python {
+
+// A scenario as Python holds it: where it came from and the overrides set on it, and the
+// scenario they build (rebuilt after every set, so that a bad value raises at once).
+class PyScenario {
+ public:
+  static PyScenario from_file(const std::string& path);
+  static PyScenario from_text(const std::string& text);
+
+  // Applies "path=value" as the command line's --set does; on error the scenario is unchanged.
+  void set(const std::string& path, const std::string& value);
+  // The scenario with extra overrides (a run's duration and output rate), built afresh.
+  std::shared_ptr<const Scenario> with(const std::vector<std::string>& extra) const;
+  const Scenario& scenario() const { return *scenario_; }
+  std::shared_ptr<const Scenario> shared() const { return scenario_; }
+  const std::vector<std::string>& overrides() const { return overrides_; }
+  const std::string& source() const { return source_; }
+  bool is_text() const { return is_text_; }
+
+ private:
+  PyScenario(std::string source, bool is_text);
+  std::shared_ptr<const Scenario> load(const std::vector<std::string>& overrides) const;
+
+  std::string source_;  // a path, or the YAML text itself
+  bool is_text_ = false;
+  std::vector<std::string> overrides_;
+  std::shared_ptr<const UnitSystem> units_;
+  std::shared_ptr<const Scenario> scenario_;
+};
+
+// A finished run: its samples (shared with the numpy arrays handed out) and the scenario that
+// made it (for the resolved config and for save).
+struct PyResult {
+  std::shared_ptr<const MemoryRun> run;
+  std::shared_ptr<const Scenario> scenario;
+};
+
+// Integrates with the GIL released; Ctrl-C interrupts the run (KeyboardInterrupt).
+PyResult run_scenario(const std::shared_ptr<const Scenario>& scenario);
+// Runs on `jobs` threads (the sweeps' run pool), the GIL released; a solver failure is that
+// result's status, not an exception.
+std::vector<PyResult> run_scenarios(const std::vector<std::shared_ptr<const Scenario>>& scenarios,
+                                    int jobs);
+
+void bind_errors(pybind11::module_& module);
+void bind_scenario(pybind11::module_& module);
+void bind_result(pybind11::module_& module);
+
+}  // namespace tcpmsim::python

@@ -1,0 +1,34 @@
+#include "python/bindings.h"
+#include "sim/config/config_error.h"
+#include "sim/integrator.h"
+#include "sim/parameters.h"
+#include "tcpmsim/version.h"
+
+namespace py = pybind11;
+
+namespace tcpmsim::python {
+
+// The command line's errors as Python exceptions with the same message: a bad config value
+// (file:line:column or the set's path, the key, what was expected) is a ConfigError; a unit
+// udunits cannot read a UnitError; a parameter outside its range a ParameterError; all three
+// are ValueErrors. A run the solver gave up raises SolverFailure (a RuntimeError).
+void bind_errors(py::module_& module) {
+  const auto& config_error =
+      py::register_exception<ConfigError>(module, "ConfigError", PyExc_ValueError);
+  py::register_exception<UnitError>(module, "UnitError", config_error.ptr());
+  py::register_exception<ParameterError>(module, "ParameterError", config_error.ptr());
+  py::register_exception<UsageError>(module, "UsageError", PyExc_ValueError);
+  // Raised by Scenario.run when the solver gives up; its `result` holds the samples before.
+  py::register_exception<SolverFailure>(module, "SolverFailure", PyExc_RuntimeError);
+}
+
+}  // namespace tcpmsim::python
+
+PYBIND11_MODULE(_core, module) {
+  module.doc() = "tcpmsim's C++ engine: scenarios, runs in memory, records.";
+  module.attr("__version__") = tcpmsim::kVersion;
+  module.attr("git_commit") = tcpmsim::kGitCommit;
+  tcpmsim::python::bind_errors(module);
+  tcpmsim::python::bind_scenario(module);
+  tcpmsim::python::bind_result(module);
+}

@@ -1,0 +1,168 @@
+"""The Python module against the command line: the same config gives the same samples, bit for
+bit, and the same bad input the same message.
+
+Run by ctest with PYTHONPATH=<build>/python:tests/python, TCPMSIM=<the program> and the source
+tree as the working directory."""
+
+import os
+import subprocess
+import tempfile
+import unittest
+
+import h5py
+import numpy as np
+
+import record_compare
+import tcpmsim
+
+PROGRAM = os.environ["TCPMSIM"]
+# A single muscle under the identification protocol, a bundle (member sets: 2-D channels), an
+# antagonistic pair under angle control with self-sensing, a coil spring.
+CONFIGS = ["configs/ch7_identification.yaml", "configs/bundle/hexagonal_parallel.yaml",
+           "configs/pair/angle_steps.yaml", "configs/ch4/st_harmonic_first.yaml"]
+
+
+def command_line_run(config, output, *settings):
+    arguments = [PROGRAM, "run", config, "-q", "-o", output]
+    for setting in settings:
+        arguments += ["--set", setting]
+    subprocess.run(arguments, check=True)
+
+
+def command_line_error(*arguments):
+    """The message `tcpmsim` prints for a bad input (its last stderr line), which must fail."""
+    done = subprocess.run([PROGRAM, *arguments], capture_output=True, text=True)
+    assert done.returncode != 0, arguments
+    return done.stderr.strip().splitlines()[-1]
+
+
+def same_bits(a, b):
+    a, b = np.asarray(a), np.asarray(b)
+    return a.dtype == b.dtype and a.shape == b.shape and a.tobytes() == b.tobytes()
+
+
+class PythonRunsAreCommandLineRuns(unittest.TestCase):
+    def setUp(self):
+        self.directory = tempfile.TemporaryDirectory()
+        self.addCleanup(self.directory.cleanup)
+
+    def path(self, name):
+        return os.path.join(self.directory.name, name)
+
+    def test_every_channel_is_bit_identical_to_tcpmsim_run(self):
+        for config in CONFIGS:
+            with self.subTest(config=config):
+                command_line_run(config, self.path("cli.h5"))
+                result = tcpmsim.Scenario.from_yaml(config).run()
+                with h5py.File(self.path("cli.h5"), "r") as record:
+                    self.assertTrue(same_bits(record["time"][()], result["time"]))
+                    for channel in result.channels[1:]:
+                        self.assertTrue(same_bits(record[channel][()], result[channel]), channel)
+                        self.assertEqual(record[channel].attrs["units"], result.units[channel])
+                    self.assertEqual(record.attrs["config"], result.config)
+                    self.assertEqual(record.attrs["solver_steps"], result.statistics["steps"])
+
+    def test_save_writes_the_record_tcpmsim_run_writes(self):
+        for config in CONFIGS[:2]:
+            with self.subTest(config=config):
+                command_line_run(config, self.path("cli.h5"))
+                result = tcpmsim.Scenario.from_yaml(config).run()
+                self.assertEqual(result.save(self.path("python.h5")), self.path("python.h5"))
+                self.assertEqual(
+                    record_compare.differences(self.path("cli.h5"), self.path("python.h5")), [])
+
+    def test_set_is_the_command_lines_set(self):
+        settings = {"muscle.mechanics.k2": "3 mN/mm", "muscle.thermal_force.kappa_c": "0.2 1/s"}
+        command_line_run(CONFIGS[0], self.path("cli.h5"),
+                         *(f"{path}={value}" for path, value in settings.items()))
+        scenario = tcpmsim.Scenario.from_yaml(CONFIGS[0])
+        for path, value in settings.items():
+            scenario.set(path, value)
+        self.assertEqual(scenario.parameters["muscle.mechanics.k2"], 3.0)  # SI: N/m
+        result = scenario.run()
+        with h5py.File(self.path("cli.h5"), "r") as record:
+            for channel in result.channels[1:]:
+                self.assertTrue(same_bits(record[channel][()], result[channel]), channel)
+
+    def test_yaml_text_runs_as_its_file_does(self):
+        with open(CONFIGS[0]) as file:
+            text = file.read()
+        from_text = tcpmsim.Scenario.from_yaml(text).run()
+        from_file = tcpmsim.Scenario.from_yaml(CONFIGS[0]).run()
+        self.assertTrue(same_bits(from_text["muscle/force"], from_file["muscle/force"]))
+
+    def test_runs_on_threads_equal_runs_one_at_a_time(self):
+        base = tcpmsim.Scenario.from_yaml(CONFIGS[0])
+        values = ["2 mN/mm", "3 mN/mm", "4 mN/mm", "5 mN/mm"]
+        on_threads = tcpmsim.sweep(base, "muscle.mechanics.k2", values, jobs=2)
+        for value, threaded in zip(values, on_threads):
+            alone = base.copy().set("muscle.mechanics.k2", value).run()
+            self.assertTrue(same_bits(threaded["muscle/force"], alone["muscle/force"]), value)
+        self.assertEqual(base.overrides, [])  # sweep set copies, not the base
+        # Stiffer muscles hold more force against the same deflection.
+        peaks = [result["muscle/force"].max() for result in on_threads]
+        self.assertEqual(peaks, sorted(peaks))
+
+    def test_duration_and_output_rate_override_the_files(self):
+        result = tcpmsim.Scenario.from_yaml(CONFIGS[0]).run(duration=10, output_rate="4 Hz")
+        self.assertEqual(len(result["time"]), 41)
+        self.assertEqual(result["time"][-1], 10.0)
+        np.testing.assert_allclose(np.diff(result["time"]), 0.25, rtol=1e-12)
+        self.assertIn("duration: 10 s", result.config)
+
+    def test_arrays_are_read_only_views_that_outlive_their_result(self):
+        result = tcpmsim.Scenario.from_yaml(CONFIGS[1]).run(duration=2)
+        temperature = result["bundle/temperature"]
+        self.assertEqual(temperature.shape, (len(result["time"]), len(result.members["bundle/temperature"])))
+        expected = temperature.copy()
+        del result
+        self.assertTrue(same_bits(temperature, expected))
+        with self.assertRaises(ValueError):
+            temperature[0, 0] = 0.0
+        with self.assertRaises(KeyError):
+            tcpmsim.Scenario.from_yaml(CONFIGS[0]).run(duration=1)["muscle/forse"]
+
+
+class PythonErrorsAreCommandLineErrors(unittest.TestCase):
+    def test_a_bad_set_raises_the_command_lines_message(self):
+        for setting, error in [("muscle.mechanics.k2=3 kg", tcpmsim.ConfigError),
+                               ("muscle.mechanics.k2=-1 N/m", tcpmsim.ConfigError),
+                               ("muscle.mechanics.k3=1 N/m", tcpmsim.ConfigError)]:
+            with self.subTest(setting=setting):
+                expected = command_line_error("validate", CONFIGS[0], "--set", setting)
+                scenario = tcpmsim.Scenario.from_yaml(CONFIGS[0])
+                path, value = setting.split("=")
+                with self.assertRaises(error) as raised:
+                    scenario.set(path, value)
+                self.assertTrue(expected.endswith(str(raised.exception)), (expected, str(raised.exception)))
+                self.assertEqual(scenario.overrides, [])  # unchanged after the error
+                self.assertTrue(isinstance(raised.exception, ValueError))
+
+    def test_a_bad_file_raises_its_location(self):
+        with tempfile.NamedTemporaryFile("w", suffix=".yaml", delete=False) as file:
+            with open(CONFIGS[0]) as source:
+                file.write(source.read().replace("duration: 400 s", "duration: 400 kg"))
+        self.addCleanup(os.unlink, file.name)
+        expected = command_line_error("validate", file.name)
+        with self.assertRaises(tcpmsim.ConfigError) as raised:
+            tcpmsim.Scenario.from_yaml(file.name)
+        self.assertEqual(str(raised.exception), expected)
+        self.assertIn(f"{file.name}:9:", str(raised.exception))
+        with self.assertRaises(tcpmsim.ConfigError):
+            tcpmsim.Scenario.from_yaml("configs/no_such_file.yaml")
+
+    def test_a_solver_failure_raises_with_the_samples_before_it(self):
+        scenario = tcpmsim.Scenario.from_yaml(CONFIGS[0]).set("solver.max_steps", 200)
+        with self.assertRaises(tcpmsim.SolverFailure) as raised:
+            scenario.run()
+        self.assertIn("more than 200 solver steps", str(raised.exception))
+        partial = raised.exception.result
+        self.assertEqual(partial.status, "failed")
+        self.assertLess(partial["time"][-1], 400.0)
+        unchecked = scenario.run(check=False)
+        self.assertFalse(unchecked.succeeded)
+        self.assertTrue(same_bits(unchecked["muscle/force"], partial["muscle/force"]))
+
+
+if __name__ == "__main__":
+    unittest.main()
