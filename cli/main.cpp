@@ -10,6 +10,7 @@
 
 #include <unistd.h>
 
+#include "analysis/analyze_command.h"
 #include "analysis/coil_fit_command.h"
 #include "analysis/control_tasks_command.h"
 #include "analysis/spring_forces_command.h"
@@ -50,6 +51,7 @@ struct Options {
   tcpmsim::analysis::CoilFitOptions coil_fit;
   tcpmsim::SpringForcesOptions spring_forces;
   tcpmsim::ControlTasksOptions control_tasks;
+  tcpmsim::AnalyzeOptions analyze;
   tcpmsim::sweep::SweepOptions sweep;
   std::vector<std::string> configs;  // run: one or more scenario files
   std::string output_directory = "results";
@@ -201,6 +203,19 @@ int spring_forces(const Options& options) {
 int control_tasks(const Options& options) {
   tcpmsim::run_control_tasks_command(options.control_tasks, std::cout,
                                      std::make_shared<tcpmsim::UnitSystem>());
+  return kSuccess;
+}
+
+// Step metrics and frequency responses of any record (analysis/analyze_command.h).
+int analyze(const Options& options) {
+  try {
+    tcpmsim::run_analyze_command(options.analyze, std::cout);
+  } catch (const std::invalid_argument& error) {
+    const std::string message = error.what();  // a record's path leads, else it is added
+    throw tcpmsim::UsageError(message.rfind(options.analyze.record, 0) == 0
+                                  ? message
+                                  : options.analyze.record + ": " + message);
+  }
   return kSuccess;
 }
 
@@ -408,6 +423,27 @@ CLI::App* add_analysis(CLI::App& app, const char* name, const char* description,
   return command;
 }
 
+// The command line as typed, each argument that needs it in single quotes: a file's provenance.
+std::string invocation_text(int argc, char** argv) {
+  std::string text;
+  for (int k = 0; k < argc; ++k) {
+    const std::string argument = argv[k];
+    const bool plain =
+        !argument.empty() && argument.find_first_not_of(
+                                 "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                 "0123456789-_./=:,+@%") == std::string::npos;
+    if (k > 0) text += ' ';
+    if (plain) {
+      text += argument;
+      continue;
+    }
+    text += '\'';
+    for (const char c : argument) text += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    text += '\'';
+  }
+  return text;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -418,6 +454,7 @@ int main(int argc, char** argv) {
       "--version", std::string("tcpmsim ") + tcpmsim::kVersion + " (" + tcpmsim::kGitCommit + ")");
   app.require_subcommand(1);
   Options options;
+  options.analyze.invocation = invocation_text(argc, argv);
 
   CLI::App* run_command =
       app.add_subcommand("run", "Simulate scenarios and write an HDF5 record of each");
@@ -500,6 +537,51 @@ int main(int argc, char** argv) {
   control_tasks_command
       ->add_option("--threads", options.control_tasks.settings.threads, "Tasks in parallel")
       ->check(CLI::Range(1, 64));
+
+  auto& analysis = options.analyze;
+  CLI::App* analyze_command = app.add_subcommand(
+      "analyze", "Step metrics and frequency response (Bode, -3 dB) of any channel of a record");
+  analyze_command
+      ->add_option("record", analysis.record, "An HDF5 record (tcpmsim run, Result.save)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  analyze_command->add_option("-o,--output", analysis.output,
+                              "Output file (default: results/<record stem>_analysis.h5)");
+  analyze_command->add_flag("-q,--quiet", analysis.quiet, "No tables");
+  analyze_command->add_option("--response", analysis.request.output, "The channel analysed")
+      ->required()
+      ->type_name("GROUP/NAME");
+  analyze_command
+      ->add_option("--reference", analysis.request.reference,
+                   "Step metrics against this channel (rise, settling, overshoot, steady-state "
+                   "error per step)")
+      ->type_name("GROUP/NAME");
+  analyze_command
+      ->add_option("--input", analysis.request.inputs,
+                   "Frequency response from this input (repeat for several); default without "
+                   "--reference: every prescribed input the window excites")
+      ->type_name("GROUP/NAME");
+  analyze_command->add_option("--from", analysis.request.from, "Window start [s]");
+  analyze_command->add_option("--to", analysis.request.to, "Window end [s]");
+  analyze_command
+      ->add_option("--method", analysis.request.method,
+                   "auto (lines for multisines, else spectral), lines or spectral")
+      ->check(CLI::IsMember({"auto", "lines", "spectral"}));
+  analyze_command
+      ->add_option("--segment", analysis.request.segment,
+                   "Spectral estimate's segment length [s] (default: a quarter of the window)")
+      ->check(CLI::PositiveNumber);
+  analyze_command
+      ->add_option("--rise", analysis.request.steps.rise.upper,
+                   "Rise time from 1 - RISE to RISE of the step (default 0.9)")
+      ->check(CLI::Range(0.5, 1.0))
+      ->each([&](const std::string&) {
+        analysis.request.steps.rise.lower = 1.0 - analysis.request.steps.rise.upper;
+      });
+  analyze_command
+      ->add_option("--settling-band", analysis.request.steps.settling_band,
+                   "Settled within this fraction of the step (default 0.02)")
+      ->check(CLI::Range(1e-6, 0.5));
 
   CLI::App* sweep_command = app.add_subcommand(
       "sweep", "Run a parameter study from a sweep file: one HDF5 summary, optionally traces");
@@ -608,6 +690,7 @@ int main(int argc, char** argv) {
   if (spring_forces_command->parsed()) return guarded(spring_forces, options);
   if (control_tasks_command->parsed()) return guarded(control_tasks, options);
   if (sweep_command->parsed()) return guarded(sweep, options);
+  if (analyze_command->parsed()) return guarded(analyze, options);
   if (fit_command->parsed()) return guarded(fit, options);
   if (measure_command->parsed()) return guarded(measure, options);
   if (discover_command->parsed()) return guarded(discover, options);

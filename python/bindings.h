@@ -60,5 +60,6 @@ std::vector<PyResult> run_scenarios(const std::vector<std::shared_ptr<const Scen
 void bind_errors(pybind11::module_& module);
 void bind_scenario(pybind11::module_& module);
 void bind_result(pybind11::module_& module);
+void bind_analysis(pybind11::module_& module);
 
 }  // namespace tcpmsim::python

@@ -31,4 +31,5 @@ PYBIND11_MODULE(_core, module) {
   tcpmsim::python::bind_errors(module);
   tcpmsim::python::bind_scenario(module);
   tcpmsim::python::bind_result(module);
+  tcpmsim::python::bind_analysis(module);
 }

@@ -12,11 +12,11 @@ The module is thin: every model, unit and error comes from the C++ engine (tcpms
 
 from ._core import (ConfigError, ParameterError, Result, Scenario, SolverFailure, UnitError,
                     UsageError,
-                    __version__, git_commit, run_many)
+                    __version__, analyze, git_commit, run_many)
 
 __all__ = ["ConfigError", "ParameterError", "Result", "Scenario", "SolverFailure", "UnitError",
            "UsageError",
-           "__version__", "git_commit", "run_many", "sweep"]
+           "__version__", "analyze", "git_commit", "run_many", "sweep"]
 
 
 def sweep(scenario, path, values, jobs=0):

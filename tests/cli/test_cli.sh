@@ -189,6 +189,21 @@ expect 3 "discover on a bad measurement is a data-file error" -- "$tcpmsim" disc
   --outputs force --validate-from 0.5 --out "$work/discover"
 [[ ! -e $work/discover ]] && echo "ok: nothing written on a discover error" || { echo "FAIL: a discover directory after an error"; failures=$((failures + 1)); }
 
+# analyze: any record's step metrics and frequency response; a request the record cannot serve
+# is a usage error naming what it has.
+expect 0 "a run of power steps" -- "$tcpmsim" run "$source_dir/configs/analysis/power_steps.yaml" \
+  --set "scenario.duration=400 s" -o "$work/steps.h5" --quiet
+expect 0 "analyze gives the step metrics of any channel" -- "$tcpmsim" analyze "$work/steps.h5" \
+  --response muscle/force --reference drive/power -o "$work/analysis.h5"
+contains "$work/out" "step response of muscle/force [N] against drive/power [W]" "analyze names the channels and units"
+expect 2 "analyze names a channel the record lacks" -- "$tcpmsim" analyze "$work/run.h5" \
+  --response muscle/forse -o "$work/none_analysis.h5"
+contains "$work/err" "has no channel 'muscle/forse'; it has" "the analysis error lists the channels"
+[[ ! -e $work/none_analysis.h5 ]] && echo "ok: no analysis file after the error" || { echo "FAIL: an analysis file after an error"; failures=$((failures + 1)); }
+expect 2 "analyze of a file that is no record is a usage error" -- "$tcpmsim" analyze "$work/analysis.h5" \
+  --response muscle/force -o "$work/none_analysis.h5"
+contains "$work/err" "is not a tcpmsim record" "the error says what the file is not"
+
 if /usr/bin/python3 -c "import h5py, matplotlib" 2>/dev/null; then
   expect 0 "the plot tool reads the record" -- "$source_dir/tools/tcpmsim-plot" traces "$work/run.h5" -o "$work/run.png"
   expect 1 "the plot tool names a channel the record lacks" -- "$source_dir/tools/tcpmsim-plot" traces "$work/run.h5" --channels muscle/colour -o "$work/none.png"

@@ -123,6 +123,40 @@ class PythonRunsAreCommandLineRuns(unittest.TestCase):
             tcpmsim.Scenario.from_yaml(CONFIGS[0]).run(duration=1)["muscle/forse"]
 
 
+class PythonAnalysisIsTheCommandLines(unittest.TestCase):
+    def test_analyze_on_a_result_gives_tcpmsim_analyze_on_its_record(self):
+        with tempfile.TemporaryDirectory() as directory:
+            record, analysis = (os.path.join(directory, name) for name in ("r.h5", "a.h5"))
+            config = "configs/analysis/power_multisine.yaml"
+            command_line_run(config, record)
+            subprocess.run([PROGRAM, "analyze", record, "--response", "load/force", "--from",
+                            "100", "-q", "-o", analysis], check=True)
+            result = tcpmsim.Scenario.from_yaml(config).run()
+            estimate = tcpmsim.analyze(result, "load/force", start=100)
+            power = estimate["responses"]["drive/power"]
+            self.assertEqual(estimate["method"], "lines")
+            self.assertEqual(power["unit"], "N/W")
+            with h5py.File(analysis, "r") as file:
+                group = file["frequency_response/drive.power"]
+                self.assertTrue(same_bits(group["frequency"][()], power["frequency"]))
+                self.assertTrue(same_bits(group["real"][()], power["response"].real.copy()))
+                self.assertTrue(same_bits(group["radius_95"][()], power["radius_95"]))
+                self.assertEqual(group["bandwidth"][()], power["bandwidth"])
+                self.assertEqual(file.attrs["command_line"].split()[1], "analyze")
+            # From the record file too.
+            again = tcpmsim.analyze(record, "load/force", start=100)
+            self.assertTrue(same_bits(again["responses"]["drive/power"]["response"],
+                                      power["response"]))
+
+    def test_step_metrics_and_bad_requests(self):
+        result = tcpmsim.Scenario.from_yaml("configs/analysis/power_steps.yaml").run()
+        steps = tcpmsim.analyze(result, "muscle/force", reference="drive/power")["steps"]
+        np.testing.assert_allclose(steps["rise_time"], np.log(9) / 0.1316, atol=0.01)
+        with self.assertRaises(ValueError) as raised:
+            tcpmsim.analyze(result, "muscle/forse")
+        self.assertIn("muscle/force", str(raised.exception))
+
+
 class PythonErrorsAreCommandLineErrors(unittest.TestCase):
     def test_a_bad_set_raises_the_command_lines_message(self):
         for setting, error in [("muscle.mechanics.k2=3 kg", tcpmsim.ConfigError),
