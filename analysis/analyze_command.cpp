@@ -4,8 +4,6 @@
 #include <functional>
 #include <stdexcept>
 
-#include "tcpmsim/version.h"
-
 namespace tcpmsim {
 namespace {
 
@@ -99,9 +97,7 @@ std::string run_analyze_command(const AnalyzeOptions& options, std::ostream& out
           : options.output;
   Hdf5Writer file(output);
   write_record_analysis(file, analysis);
-  file.attribute("/", "tcpmsim_version", kVersion);
-  file.attribute("/", "git_commit", kGitCommit);
-  file.attribute("/", "command_line", options.invocation);
+  file.provenance({options.invocation, {{record.config_file, record.config, record.seed}}});
   file.commit();
   if (!options.quiet) out << analysis_report(analysis) << "wrote " << output << "\n";
   return output;

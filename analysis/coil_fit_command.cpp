@@ -32,7 +32,9 @@ std::string run_coil_fit(const CoilFitOptions& options, std::ostream& out,
   if (!options.quiet) print_coil_fit_report(out, results);
 
   const std::string output = options.output.empty() ? "results/coil_fit.h5" : options.output;
-  write_coil_fit_hdf5(output, results, {data_directories(options, springs), options.spring_files});
+  write_coil_fit_hdf5(
+      output, results,
+      {data_directories(options, springs), options.spring_files, options.invocation});
   if (!options.quiet) out << "\nwrote " << output << "\n";
   return output;
 }

@@ -13,6 +13,7 @@ struct CoilFitOptions {
   std::vector<std::string> spring_files;  // configs/springs/s1.yaml ...
   std::string data_directory;             // holds <sequence>.csv; empty: each spring's own
   std::string output;                     // HDF5; empty: results/coil_fit.h5
+  std::string invocation;                 // the command line, for the file's provenance
   bool quiet = false;                     // no tables on `out`
 };
 

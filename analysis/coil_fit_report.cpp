@@ -1,12 +1,15 @@
 #include "analysis/coil_fit_report.h"
 
+#include <sstream>
+
+#include <fstream>
+
 #include <cmath>
 #include <cstdio>
 #include <limits>
 
 #include "analysis/thesis_tables.h"
 #include "sim/io/hdf5_writer.h"
-#include "tcpmsim/version.h"
 
 namespace tcpmsim::analysis {
 
@@ -131,8 +134,14 @@ void print_coil_fit_report(std::ostream& out, const std::vector<SequenceAnalysis
 void write_coil_fit_hdf5(const std::string& path, const std::vector<SequenceAnalysis>& results,
                          const CoilFitProvenance& provenance) {
   Hdf5Writer file(path);
-  file.attribute("/", "tcpmsim_version", kVersion);
-  file.attribute("/", "git_commit", kGitCommit);
+  Provenance files{provenance.command_line, {}};
+  for (const auto& spring : provenance.spring_files) {
+    std::ifstream in(spring);
+    std::ostringstream text;
+    text << in.rdbuf();
+    files.configs.push_back({spring, text.str(), ""});
+  }
+  file.provenance(files);
   file.attribute("/", "command", "coil-fit");
   file.attribute("/", "data_directory", provenance.data_directory);
   std::string springs;

@@ -15,6 +15,7 @@ void print_coil_fit_report(std::ostream& out, const std::vector<SequenceAnalysis
 struct CoilFitProvenance {
   std::string data_directory;
   std::vector<std::string> spring_files;
+  std::string command_line;
 };
 
 // Everything to one HDF5 file (layout in the README's coil-spring section).

@@ -256,9 +256,10 @@ void write_task_analysis(Hdf5Writer& file, const std::string& group, const TaskA
 }
 
 void write_control_task_report(const std::vector<ControlTaskResult>& results,
-                               const std::string& path,
+                               const std::string& path, const Provenance& provenance,
                                const std::function<void(Hdf5Writer&)>& more) {
   Hdf5Writer file(path);
+  file.provenance(provenance);
   for (const auto& result : results) {
     file.write(result.scenario + "/calibration_offsets",
                std::vector<double>{result.deflection_offset, result.force_offset}, "m, N");

@@ -63,7 +63,7 @@ std::string format_control_task_report(const std::vector<ControlTaskResult>& res
 // Writes one group per task (its calibration offsets and write_task_analysis); `more` may add
 // groups (the pair tasks) before the file is committed.
 void write_control_task_report(const std::vector<ControlTaskResult>& results,
-                               const std::string& path,
+                               const std::string& path, const Provenance& provenance,
                                const std::function<void(Hdf5Writer&)>& more = {});
 // A task's analysis under `group`: step_time, rise_time, reached; or frequency, magnitude,
 // phase, bandwidth; and estimation_error (in error_unit).

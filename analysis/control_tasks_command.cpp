@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "analysis/pair_task_runner.h"
+#include "analysis/provenance.h"
 
 namespace tcpmsim {
 
@@ -21,8 +22,10 @@ std::string run_control_tasks_command(const ControlTasksOptions& options, std::o
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   const std::string output = options.output.empty() ? "results/control_tasks.h5" : options.output;
-  write_control_task_report(results, output,
-                            [&](Hdf5Writer& file) { write_pair_tasks(file, pair_results); });
+  write_control_task_report(
+      results, output,
+      file_provenance(options.invocation, options.configs, options.settings.overrides, units),
+      [&](Hdf5Writer& file) { write_pair_tasks(file, pair_results); });
   if (!options.quiet) {
     if (!results.empty()) out << format_control_task_report(results);
     if (!pair_results.empty()) out << format_pair_comparison(pair_results, results);

@@ -11,7 +11,8 @@ namespace tcpmsim {
 
 struct ControlTasksOptions {
   std::vector<std::string> configs;
-  std::string output;  // HDF5; empty: results/control_tasks.h5
+  std::string output;      // HDF5; empty: results/control_tasks.h5
+  std::string invocation;  // the command line, for the file's provenance
   ControlTaskSettings settings;
   bool quiet = false;
 };

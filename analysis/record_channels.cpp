@@ -99,9 +99,18 @@ RecordChannels read_record_channels(const std::string& path) {
     if (!file.nameExists("time"))
       throw std::runtime_error(path + " is not a tcpmsim record (it has no /time)");
     record.time = read_doubles(file, "time");
-    if (file.attrExists("scenario")) {
-      H5::Attribute attribute = file.openAttribute("scenario");
-      attribute.read(attribute.getStrType(), record.scenario);
+    const auto text = [&](const char* name, std::string& value) {
+      if (!file.attrExists(name)) return;
+      H5::Attribute attribute = file.openAttribute(name);
+      if (attribute.getTypeClass() == H5T_STRING) attribute.read(attribute.getStrType(), value);
+    };
+    text("scenario", record.scenario);
+    text("config_file", record.config_file);
+    text("config", record.config);
+    if (file.attrExists("seed")) {
+      std::uint64_t seed = 0;
+      file.openAttribute("seed").read(H5::PredType::NATIVE_UINT64, &seed);
+      record.seed = std::to_string(seed);
     }
     read_channels(file, "", record);
     for (const auto& input : read_record_inputs(file))
@@ -117,6 +126,9 @@ RecordChannels memory_record_channels(const Scenario& scenario, const MemoryRun&
   RecordChannels record;
   record.source = "the run of '" + scenario.settings.name + "'";
   record.scenario = scenario.settings.name;
+  record.config_file = scenario.source;
+  record.config = scenario.resolved_yaml;
+  record.seed = std::to_string(scenario.settings.seed);
   record.time = run.time;
   for (std::size_t k = 0; k < run.series.size(); ++k) {
     const auto& series = run.series[k];

@@ -33,6 +33,7 @@ struct RecordChannels {
   };
   std::string source;  // the file, or the scenario's name
   std::string scenario;
+  std::string config_file, config, seed;  // the run's scenario file, resolved YAML and seed
   std::vector<double> time;
   std::map<std::string, Channel> channels;  // "muscle/force"
   // Each prescribed signal of one instance that the record also holds as a channel

@@ -177,8 +177,10 @@ std::string format_spring_force_table(const std::vector<SpringForceRow>& rows) {
   return text;
 }
 
-void write_spring_force_table(const std::vector<SpringForceRow>& rows, const std::string& path) {
+void write_spring_force_table(const std::vector<SpringForceRow>& rows, const std::string& path,
+                              const Provenance& provenance) {
   Hdf5Writer file(path);
+  file.provenance(provenance);
   std::vector<std::string> names;
   for (const auto& row : rows) names.push_back(row.scenario);
   file.write_strings("scenario", names);

@@ -1,5 +1,7 @@
 #pragma once
 
+#include "sim/io/hdf5_writer.h"
+
 #include <array>
 #include <memory>
 #include <optional>
@@ -43,6 +45,7 @@ std::vector<SpringForceRow> run_spring_forces(const std::vector<std::string>& co
 std::optional<ForceDifferences> thesis_table_4_2(const std::string& scenario);
 
 std::string format_spring_force_table(const std::vector<SpringForceRow>& rows);
-void write_spring_force_table(const std::vector<SpringForceRow>& rows, const std::string& path);
+void write_spring_force_table(const std::vector<SpringForceRow>& rows, const std::string& path,
+                              const Provenance& provenance);
 
 }  // namespace tcpmsim

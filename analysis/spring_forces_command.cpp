@@ -1,5 +1,7 @@
 #include "analysis/spring_forces_command.h"
 
+#include "analysis/provenance.h"
+
 #include <chrono>
 #include <cmath>
 #include <complex>
@@ -67,7 +69,8 @@ std::string run_spring_forces_command(const SpringForcesOptions& options, std::o
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   const std::string output = options.output.empty() ? "results/spring_forces.h5" : options.output;
-  write_spring_force_table(rows, output);
+  write_spring_force_table(rows, output,
+                           file_provenance(options.invocation, options.configs, {}, units));
   if (!options.quiet) {
     out << format_spring_force_table(rows);
     char line[160];

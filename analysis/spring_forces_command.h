@@ -15,6 +15,7 @@ struct SpringForcesOptions {
   double window = 0.25;              // analysed tail of each run [s]
   int threads = 2;
   bool quiet = false;
+  std::string invocation;  // the command line, for the file's provenance
 };
 
 // `tcpmsim spring-forces`: runs the scenarios, prints Table 4.2 beside the thesis' values and,

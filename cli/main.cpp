@@ -13,6 +13,7 @@
 #include "analysis/analyze_command.h"
 #include "analysis/coil_fit_command.h"
 #include "analysis/control_tasks_command.h"
+#include "analysis/provenance.h"
 #include "analysis/spring_forces_command.h"
 #include "cli/interrupt.h"
 #include "cli/progress.h"
@@ -52,6 +53,7 @@ struct Options {
   tcpmsim::SpringForcesOptions spring_forces;
   tcpmsim::ControlTasksOptions control_tasks;
   tcpmsim::AnalyzeOptions analyze;
+  std::string invocation;  // the command line, written into every file
   tcpmsim::sweep::SweepOptions sweep;
   std::vector<std::string> configs;  // run: one or more scenario files
   std::string output_directory = "results";
@@ -114,12 +116,12 @@ int run_batch(const Options& options) {
   std::vector<tcpmsim::sweep::BatchRun> runs;
   {
     tcpmsim::BatchProgress progress(stderr, "batch");
-    runs = tcpmsim::sweep::run_batch({options.configs, options.overrides, options.output_directory,
-                                      options.jobs, static_cast<double>(options.max_output_bytes)},
-                                     std::make_shared<tcpmsim::UnitSystem>(),
-                                     [&](std::size_t done, std::size_t total) {
-                                       if (!options.quiet) progress.update(done, total);
-                                     });
+    runs = tcpmsim::sweep::run_batch(
+        {options.configs, options.overrides, options.output_directory, options.jobs,
+         static_cast<double>(options.max_output_bytes), options.invocation},
+        std::make_shared<tcpmsim::UnitSystem>(), [&](std::size_t done, std::size_t total) {
+          if (!options.quiet) progress.update(done, total);
+        });
   }
   int failed = 0;
   for (const auto& run : runs) {
@@ -142,6 +144,7 @@ int run(const Options& options) {
   if (options.configs.size() > 1) return run_batch(options);
   tcpmsim::Scenario scenario = tcpmsim::load_scenario(options.configs.front(), options.overrides,
                                                       std::make_shared<tcpmsim::UnitSystem>());
+  scenario.invocation = options.invocation;
   tcpmsim::check_record_size(scenario, static_cast<double>(options.max_output_bytes));
   const std::string output =
       options.output.empty() ? "results/" + scenario.settings.name + ".h5" : options.output;
@@ -265,7 +268,9 @@ int fit(const Options& options) {
     std::cerr << "tcpmsim: the fit failed: " << failure.what() << "\n";
     return kSimulationFailed;
   }
-  const auto written = tcpmsim::fit::write_fit_outputs(directory, spec, result);
+  const auto written = tcpmsim::fit::write_fit_outputs(
+      directory, spec, result,
+      tcpmsim::file_provenance(options.invocation, {spec.file, spec.model_file}, {}, units));
   if (!options.quiet) {
     std::cout << tcpmsim::fit::fit_summary(spec, result);
     for (const auto& file : written) std::cout << "wrote " << file << "\n";
@@ -273,7 +278,6 @@ int fit(const Options& options) {
   return kSuccess;
 }
 
-// The missing effect: a base model fitted, diagnosed, and refitted with each named effect.
 // The plotting script: beside the program when installed (bin/tcpmsim-plot), else the source
 // tree's tools/tcpmsim-plot.
 std::string plot_tool() {
@@ -286,6 +290,7 @@ std::string plot_tool() {
   return TCPMSIM_PLOT_TOOL;
 }
 
+// The missing effect: a base model fitted, diagnosed, and refitted with each named effect.
 int discover(const Options& options) {
   auto units = std::make_shared<tcpmsim::UnitSystem>();
   tcpmsim::fit::DiscoverRequest request = options.discover;
@@ -303,7 +308,9 @@ int discover(const Options& options) {
     std::cerr << "tcpmsim: the base model's fit failed: " << failure.what() << "\n";
     return kSimulationFailed;
   }
-  const auto written = tcpmsim::fit::write_discovery(directory, discovery);
+  const auto written = tcpmsim::fit::write_discovery(
+      directory, discovery,
+      tcpmsim::file_provenance(options.invocation, {request.model_file}, request.overrides, units));
   if (options.plots) {
     // The residuals before and after, and the diagnostic that gave the effect away.
     const std::string command =
@@ -454,7 +461,9 @@ int main(int argc, char** argv) {
       "--version", std::string("tcpmsim ") + tcpmsim::kVersion + " (" + tcpmsim::kGitCommit + ")");
   app.require_subcommand(1);
   Options options;
-  options.analyze.invocation = invocation_text(argc, argv);
+  options.invocation = invocation_text(argc, argv);
+  options.analyze.invocation = options.coil_fit.invocation = options.spring_forces.invocation =
+      options.control_tasks.invocation = options.sweep.invocation = options.invocation;
 
   CLI::App* run_command =
       app.add_subcommand("run", "Simulate scenarios and write an HDF5 record of each");

@@ -248,7 +248,8 @@ std::string discovery_report(const Discovery& discovery) {
   return out.str();
 }
 
-std::vector<std::string> write_discovery(const std::string& directory, const Discovery& discovery) {
+std::vector<std::string> write_discovery(const std::string& directory, const Discovery& discovery,
+                                         const Provenance& provenance) {
   std::filesystem::create_directories(directory);
   const auto in = [&](const char* name) {
     return (std::filesystem::path(directory) / name).string();
@@ -285,6 +286,7 @@ std::vector<std::string> write_discovery(const std::string& directory, const Dis
   const auto& time = problem.data->time();
   const std::string traces = in("traces.h5");
   Hdf5Writer writer(traces);
+  writer.provenance(provenance);
   writer.write("/time",
                std::vector<double>(time.begin() + static_cast<long>(first),
                                    time.begin() + static_cast<long>(last)),

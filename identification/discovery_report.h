@@ -1,5 +1,7 @@
 #pragma once
 
+#include "sim/io/hdf5_writer.h"
+
 #include <string>
 #include <vector>
 
@@ -24,6 +26,7 @@ std::string discovery_summary(const Discovery& discovery);
 // augmented.yaml (with the verdict's effect, when there is one) and traces.h5 (/time,
 // /measured, /baseline, /augmented and their residuals per channel, the windows, and the
 // diagnostics of the base model's validation residual). Returns the paths written.
-std::vector<std::string> write_discovery(const std::string& directory, const Discovery& discovery);
+std::vector<std::string> write_discovery(const std::string& directory, const Discovery& discovery,
+                                         const Provenance& provenance = {});
 
 }  // namespace tcpmsim::fit

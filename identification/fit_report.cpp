@@ -135,7 +135,7 @@ std::string fitted_scenario_yaml(const FitSpec& spec, const FitResult& result) {
 }
 
 std::vector<std::string> write_fit_outputs(const std::string& directory, const FitSpec& spec,
-                                           const FitResult& result) {
+                                           const FitResult& result, const Provenance& provenance) {
   std::filesystem::create_directories(directory);
   const auto in = [&](const char* name) {
     return (std::filesystem::path(directory) / name).string();
@@ -156,6 +156,7 @@ std::vector<std::string> write_fit_outputs(const std::string& directory, const F
   const auto [first, last] = samples_in(*spec.problem.data, whole);
   const auto& time = spec.problem.data->time();
   Hdf5Writer writer(in("fit.h5"));
+  writer.provenance(provenance);
   writer.write("/time",
                std::vector<double>(time.begin() + static_cast<long>(first),
                                    time.begin() + static_cast<long>(last)),

@@ -1,5 +1,7 @@
 #pragma once
 
+#include "sim/io/hdf5_writer.h"
+
 #include <string>
 
 #include "identification/fit_spec.h"
@@ -23,6 +25,7 @@ std::string fitted_scenario_yaml(const FitSpec& spec, const FitResult& result);
 // Writes DIR/fit.json, DIR/fitted.yaml and DIR/fit.h5 (the measured channels and the model's
 // outputs before and after the fit, over both windows) and returns their paths.
 std::vector<std::string> write_fit_outputs(const std::string& directory, const FitSpec& spec,
-                                           const FitResult& result);
+                                           const FitResult& result,
+                                           const Provenance& provenance = {});
 
 }  // namespace tcpmsim::fit

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <sstream>
 #include <thread>
 
 #include "kinds/standard_kinds.h"
@@ -66,6 +67,15 @@ void raise_pending_interrupt() {
   if (PyErr_Occurred()) throw py::error_already_set();
 }
 
+// The Python program that builds the scenario, for its records: "python3 script.py args".
+std::string python_invocation() {
+  std::ostringstream text;  // (a string built by += trips GCC 12's false -Wstringop-overflow)
+  text << "python3";
+  for (const auto& argument : py::module_::import("sys").attr("argv"))
+    text << ' ' << py::str(argument).cast<std::string>();
+  return text.str();
+}
+
 py::dict parameter_values(const Scenario& scenario) {
   Context context = scenario.make_context();
   scenario.system->prepare(context);
@@ -92,9 +102,10 @@ PyScenario PyScenario::from_text(const std::string& text) {
 }
 
 std::shared_ptr<const Scenario> PyScenario::load(const std::vector<std::string>& overrides) const {
-  return std::make_shared<const Scenario>(
-      is_text_ ? load_scenario_text(source_, "<yaml text>", overrides, units_)
-               : load_scenario(source_, overrides, units_));
+  Scenario scenario = is_text_ ? load_scenario_text(source_, "<yaml text>", overrides, units_)
+                               : load_scenario(source_, overrides, units_);
+  scenario.invocation = python_invocation();
+  return std::make_shared<const Scenario>(std::move(scenario));
 }
 
 void PyScenario::set(const std::string& path, const std::string& value) {

@@ -63,7 +63,8 @@ RecordMetadata record_metadata(const Scenario& scenario) {
           linear_solver_name(scenario.solver.linear_solver),
           scenario.settings.output_interval,
           scenario.settings.duration,
-          scenario.settings.compression_level};
+          scenario.settings.compression_level,
+          scenario.invocation};
 }
 
 SolverStatistics integrate(const Scenario& scenario, Context& context, OutputSink& sink,

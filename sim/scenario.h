@@ -26,6 +26,9 @@ struct Scenario {
   std::vector<std::pair<std::string, double>> parameter_settings;
   std::string source;         // the file it came from
   std::string resolved_yaml;  // as read, with overrides and defaults
+  // The command line (or the Python call) that runs it, written into its record; empty: not
+  // known (a library call).
+  std::string invocation;
   // A context for one run, with the parameters as the scenario sets them.
   Context make_context() const;
 };

@@ -15,6 +15,7 @@ std::vector<BatchRun> run_batch(const BatchOptions& options,
   std::map<std::string, std::string> files_by_name;
   for (const auto& config : options.configs) {
     scenarios.push_back(load_scenario(config, options.overrides, units));
+    scenarios.back().invocation = options.invocation;
     check_record_size(scenarios.back(), options.max_record_bytes);
     const std::string& name = scenarios.back().settings.name;
     if (const auto [earlier, added] = files_by_name.emplace(name, config); !added)

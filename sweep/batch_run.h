@@ -18,6 +18,7 @@ struct BatchOptions {
   std::string output_directory = "results";
   int threads = 1;
   double max_record_bytes = 2e9;  // each record's limit (check_record_size), before any run
+  std::string invocation = {};    // the command line, written into each record
 };
 
 struct BatchRun {

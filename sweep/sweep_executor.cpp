@@ -23,7 +23,7 @@ SweepOutcome run_sweep(const SweepSpec& spec, const SweepOptions& options,
       [&](std::size_t done) {
         if (progress) progress(outcome.resumed + done, outcome.runs);
       });
-  outcome.failed = store.merge();
+  outcome.failed = store.merge(options.invocation);
   return outcome;
 }
 

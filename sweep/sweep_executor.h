@@ -11,9 +11,10 @@
 namespace tcpmsim::sweep {
 
 struct SweepOptions {
-  std::string output;  // the HDF5 file
+  std::string output;      // the HDF5 file
   int threads = 1;
   bool resume = false;  // finish an interrupted sweep
+  std::string invocation = {};  // the command line, written into the summary
 };
 
 struct SweepOutcome {

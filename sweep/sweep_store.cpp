@@ -10,7 +10,6 @@
 #include "sim/config/config_node.h"
 #include "sim/io/hdf5_files.h"
 #include "sim/io/hdf5_writer.h"
-#include "tcpmsim/version.h"
 
 namespace tcpmsim::sweep {
 namespace {
@@ -162,7 +161,7 @@ void SweepStore::write(const RunResult& result) const {
   part.commit();
 }
 
-std::size_t SweepStore::merge() const {
+std::size_t SweepStore::merge(const std::string& invocation) const {
   const std::size_t runs = spec_.runs.size();
   const auto columns = value_columns(spec_);
   std::vector<std::vector<double>> values(columns.size()), metrics(spec_.metrics.size());
@@ -196,8 +195,7 @@ std::size_t SweepStore::merge() const {
   output.write_strings("/summary/status", status);
   output.write_strings("/summary/message", messages);
   output.write("/timing/wall_seconds", wall, "s");
-  output.attribute("/", "tcpmsim_version", kVersion);
-  output.attribute("/", "git_commit", kGitCommit);
+  output.provenance({invocation, {{spec_.file, spec_.resolved_yaml, std::to_string(spec_.seed)}}});
   output.attribute("/", "sweep", spec_.name);
   output.attribute("/", "sweep_file", spec_.file);
   output.attribute("/", "sweep_config", spec_.resolved_yaml);

@@ -38,7 +38,8 @@ class SweepStore {
   void write(const RunResult& result) const;
   // Writes the output file from the parts (all runs must be done) and removes them. Returns the
   // number of failed runs.
-  std::size_t merge() const;
+  // `invocation`: the command line, written into the summary.
+  std::size_t merge(const std::string& invocation = "") const;
 
  private:
   std::string part_path(std::size_t id) const;

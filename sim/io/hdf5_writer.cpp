@@ -1,5 +1,7 @@
 #include "sim/io/hdf5_writer.h"
 
+#include "tcpmsim/version.h"
+
 #include <H5Cpp.h>
 
 #include <filesystem>
@@ -123,6 +125,7 @@ void Hdf5Writer::write_integers(const std::string& dataset, std::span<const long
     H5::DataSet set =
         group.createDataSet(leaf(dataset), H5::PredType::NATIVE_LLONG, H5::DataSpace(1, &size));
     if (!values.empty()) set.write(values.data(), H5::PredType::NATIVE_LLONG);
+    write_text_attribute(set, "units", "1");  // counts and identifiers
   });
 }
 
@@ -142,8 +145,31 @@ void Hdf5Writer::attribute(const std::string& object, const std::string& name,
   });
 }
 
+void Hdf5Writer::provenance(const Provenance& provenance) {
+  std::vector<std::string> files, configs, seeds;
+  for (const auto& config : provenance.configs) {
+    files.push_back(config.file);
+    configs.push_back(config.resolved);
+    seeds.push_back(config.seed);
+  }
+  guarded(path_, [&] {
+    H5::Group root = file_->file.openGroup("/");
+    write_text_attribute(root, "command_line", provenance.command_line);
+    if (files.empty()) return;
+    write_text_array_attribute(root, "config_files", files);
+    write_text_array_attribute(root, "configs", configs);
+    write_text_array_attribute(root, "seeds", seeds);
+  });
+}
+
 void Hdf5Writer::commit() {
-  guarded(path_, [&] { file_->file.close(); });
+  guarded(path_, [&] {
+    H5::Group root = file_->file.openGroup("/");
+    if (!root.attrExists("tcpmsim_version"))
+      write_text_attribute(root, "tcpmsim_version", kVersion);
+    if (!root.attrExists("git_commit")) write_text_attribute(root, "git_commit", kGitCommit);
+    file_->file.close();
+  });
   std::error_code error;
   std::filesystem::rename(partial_path(path_), path_, error);
   if (error) throw std::runtime_error("cannot write " + path_ + ": " + error.message());

@@ -7,6 +7,20 @@
 
 namespace tcpmsim {
 
+// What made a file: the command line (or the Python call) and the configuration files it read,
+// each with its resolved text (a scenario's YAML as read, overrides and defaults included) and
+// seed. Written as root attributes: command_line, config_files, configs and seeds (text
+// arrays); every file also carries tcpmsim_version and git_commit.
+struct Provenance {
+  struct Config {
+    std::string file;
+    std::string resolved;  // YAML
+    std::string seed;      // decimal; empty when the file has none
+  };
+  std::string command_line;
+  std::vector<Config> configs;
+};
+
 // Writes analysis results to one HDF5 file as flat datasets (1-D or 2-D doubles, or strings),
 // each number with a `units` attribute, in groups created on demand ("/S1_01/models/maxwell/
 // inductance"). Like the simulation record, the file is written as "<path>.partial" and renamed
@@ -25,12 +39,16 @@ class Hdf5Writer {
                     std::size_t columns, const std::string& units);
   void write_scalar(const std::string& dataset, double value, const std::string& units);
   void write_strings(const std::string& dataset, const std::vector<std::string>& values);
-  // 1-D 64-bit integers (counts, identifiers).
+  // 1-D 64-bit integers (counts, identifiers), with units "1".
   void write_integers(const std::string& dataset, std::span<const long long> values);
   // A text attribute on an existing object ("/" for the file).
   void attribute(const std::string& object, const std::string& name, const std::string& value);
 
-  // Closes the file and renames it to its final path.
+  // The provenance's attributes on the root.
+  void provenance(const Provenance& provenance);
+
+  // Writes tcpmsim_version and git_commit on the root, closes the file and renames it to its
+  // final path.
   void commit();
 
  private:

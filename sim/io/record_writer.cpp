@@ -1,6 +1,7 @@
 #include "sim/io/record_writer.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "sim/io/hdf5_files.h"
 #include "sim/io/record_layout.h"
@@ -46,15 +47,30 @@ H5::DataSet write_array(H5::Group& parent, const std::string& name,
   return dataset;
 }
 
-void write_description(H5::Group& group, const SignalDescription& description) {
+// The unit of a description's array: times and frequencies by their names, the signal's values
+// in the signal's unit. Throws std::logic_error for an array no signal is known to describe, so
+// that a new signal's arrays get their unit here (every record's test runs every signal kind).
+std::string description_array_unit(const std::string& array, const std::string& signal_unit) {
+  if (array == "times" || array == "starts" || array == "start_times") return "s";
+  if (array == "frequencies") return "Hz";
+  if (array == "phases") return "rad";
+  if (array == "values" || array == "amplitudes") return signal_unit;
+  throw std::logic_error("the signal description's array '" + array + "' has no unit");
+}
+
+void write_description(H5::Group& group, const SignalDescription& description,
+                       const std::string& unit) {
   write_text_attribute(group, "type", description.type);
   for (const auto& [name, value] : description.parameters) {
     write_scalar(group, name, H5::PredType::NATIVE_DOUBLE, value);
   }
-  for (const auto& [name, values] : description.arrays) write_array(group, name, values);
+  for (const auto& [name, values] : description.arrays) {
+    H5::DataSet dataset = write_array(group, name, values);
+    write_text_attribute(dataset, "units", description_array_unit(name, unit));
+  }
   for (const auto& [name, part] : description.parts) {
     H5::Group child = group.createGroup(name);
-    write_description(child, part);
+    write_description(child, part, unit);
   }
 }
 
@@ -238,6 +254,8 @@ void RecordWriter::create(const RecordPlan& plan) {
   write_text_attribute(root, "scenario", metadata.scenario_name);
   write_text_attribute(root, "config_file", metadata.config_file);
   write_text_attribute(root, "config", metadata.resolved_config);
+  if (!metadata.command_line.empty())
+    write_text_attribute(root, "command_line", metadata.command_line);
   write_scalar(root, "seed", H5::PredType::NATIVE_UINT64, metadata.seed);
   write_scalar(root, "rtol", H5::PredType::NATIVE_DOUBLE, metadata.relative_tolerance);
   write_text_attribute(root, "linear_solver", metadata.linear_solver);
@@ -266,7 +284,7 @@ void RecordWriter::create(const RecordPlan& plan) {
   for (const auto& input : plan.inputs) {
     H5::Group group = group_at(file_, "/inputs/" + input.path);
     write_text_attribute(group, "units", input.unit);
-    write_description(group, input.description);
+    write_description(group, input.description, input.unit);
     if (!input.members.empty()) write_text_array_attribute(group, "members", input.members);
   }
   file_.flush(H5F_SCOPE_GLOBAL);  // a run killed from here on leaves a file that opens

@@ -30,6 +30,7 @@ struct RecordMetadata {
   double output_interval = 0.0;
   double duration = 0.0;
   int compression_level = 0;  // deflate (with shuffle) at this level; 0: none
+  std::string command_line;   // written when known
 };
 
 // Everything a record holds besides its samples, read from the system and the context on the

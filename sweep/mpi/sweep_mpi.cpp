@@ -183,7 +183,7 @@ SweepOutcome run_sweep_mpi(const SweepSpec& spec, const SweepOptions& options,
     throw std::runtime_error(local_problem.empty() ? "another rank failed to store its runs"
                                                    : local_problem);
   std::uint64_t failed = 0;
-  on_rank_zero(session, [&] { failed = store.merge(); });
+  on_rank_zero(session, [&] { failed = store.merge(options.invocation); });
   MPI_Bcast(&failed, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
   outcome.failed = failed;
   return outcome;

@@ -204,6 +204,16 @@ expect 2 "analyze of a file that is no record is a usage error" -- "$tcpmsim" an
   --response muscle/force -o "$work/none_analysis.h5"
 contains "$work/err" "is not a tcpmsim record" "the error says what the file is not"
 
+# Provenance (issue 14): every file the commands above wrote carries the version, git commit,
+# command line and configs, and units on every numeric dataset.
+if /usr/bin/python3 -c "import h5py" 2>/dev/null; then
+  mapfile -t written < <(find "$work" -name '*.h5' -size +0 | sort)
+  hdf5_files=$(/usr/bin/python3 -c 'import sys, h5py; print(sum(map(h5py.is_hdf5, sys.argv[1:])))' "${written[@]}")
+  expect 0 "every file written carries its provenance and units" -- /usr/bin/python3 \
+    "$source_dir/tests/python/check_provenance.py" "${written[@]}"
+    contains "$work/out" "checked $hdf5_files file(s): 0 problem(s)" "the provenance check saw every file"
+fi
+
 if /usr/bin/python3 -c "import h5py, matplotlib" 2>/dev/null; then
   expect 0 "the plot tool reads the record" -- "$source_dir/tools/tcpmsim-plot" traces "$work/run.h5" -o "$work/run.png"
   expect 1 "the plot tool names a channel the record lacks" -- "$source_dir/tools/tcpmsim-plot" traces "$work/run.h5" --channels muscle/colour -o "$work/none.png"

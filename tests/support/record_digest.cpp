@@ -13,8 +13,9 @@ namespace tcpmsim::testing {
 
 namespace {
 
-const std::set<std::string> kIgnoredAttributes{"tcpmsim_version", "git_commit",     "config_file",
-                                               "command",         "data_directory", "spring_files"};
+const std::set<std::string> kIgnoredAttributes{"tcpmsim_version", "git_commit",   "config_file",
+                                               "command_line",    "config_files", "command",
+                                               "data_directory",  "spring_files"};
 
 class Hash {
  public:
