@@ -32,8 +32,8 @@ assert header[column["force"]] == "force[mN]"
 time, force = measured[:, column["time"]], measured[:, column["force"]] * 1e-3  # mN -> N
 
 # The model replays the measured inputs.
-model = tcpmsim.Scenario.from_yaml("configs/discover/ch7_base.yaml")
-model.set("measurement.file", measured_csv)
+model = tcpmsim.Scenario.from_yaml("configs/discover/ch7_base.yaml",
+                                  set={"measurement.file": measured_csv})
 result = model.run()
 simulated = np.interp(time, result["time"], result["load/force"])
 residual = force - simulated

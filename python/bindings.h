@@ -19,8 +19,10 @@ namespace tcpmsim::python {
 // scenario they build (rebuilt after every set, so that a bad value raises at once).
 class PyScenario {
  public:
-  static PyScenario from_file(const std::string& path);
-  static PyScenario from_text(const std::string& text);
+  // `overrides` ("path=value") apply from the start, as the command line's --set: for a
+  // scenario that cannot be built without them (a measurement file to replay).
+  static PyScenario from_file(const std::string& path, std::vector<std::string> overrides = {});
+  static PyScenario from_text(const std::string& text, std::vector<std::string> overrides = {});
 
   // Applies "path=value" as the command line's --set does; on error the scenario is unchanged.
   void set(const std::string& path, const std::string& value);
@@ -33,7 +35,7 @@ class PyScenario {
   bool is_text() const { return is_text_; }
 
  private:
-  PyScenario(std::string source, bool is_text);
+  PyScenario(std::string source, bool is_text, std::vector<std::string> overrides);
   std::shared_ptr<const Scenario> load(const std::vector<std::string>& overrides) const;
 
   std::string source_;  // a path, or the YAML text itself

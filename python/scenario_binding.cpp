@@ -89,16 +89,19 @@ py::dict parameter_values(const Scenario& scenario) {
 
 }  // namespace
 
-PyScenario::PyScenario(std::string source, bool is_text)
-    : source_(std::move(source)), is_text_(is_text), units_(std::make_shared<UnitSystem>()) {
+PyScenario::PyScenario(std::string source, bool is_text, std::vector<std::string> overrides)
+    : source_(std::move(source)),
+      is_text_(is_text),
+      overrides_(std::move(overrides)),
+      units_(std::make_shared<UnitSystem>()) {
   scenario_ = load(overrides_);
 }
 
-PyScenario PyScenario::from_file(const std::string& path) {
-  return PyScenario(path, false);
+PyScenario PyScenario::from_file(const std::string& path, std::vector<std::string> overrides) {
+  return PyScenario(path, false, std::move(overrides));
 }
-PyScenario PyScenario::from_text(const std::string& text) {
-  return PyScenario(text, true);
+PyScenario PyScenario::from_text(const std::string& text, std::vector<std::string> overrides) {
+  return PyScenario(text, true, std::move(overrides));
 }
 
 std::shared_ptr<const Scenario> PyScenario::load(const std::vector<std::string>& overrides) const {
@@ -166,16 +169,23 @@ void bind_scenario(py::module_& module) {
                          "A scenario file (or YAML text) turned into a model, ready to run.")
       .def_static(
           "from_yaml",
-          [](const py::object& source) {
+          [](const py::object& source, const py::object& settings) {
+            std::vector<std::string> overrides;
+            if (!settings.is_none())
+              for (const auto& [path, value] : settings.cast<py::dict>())
+                overrides.push_back(py::str(path).cast<std::string>() + "=" + override_text(value));
             if (py::isinstance<py::str>(source)) {
               const std::string text = source.cast<std::string>();
-              if (text.find('\n') != std::string::npos) return PyScenario::from_text(text);
-              return PyScenario::from_file(text);
+              if (text.find('\n') != std::string::npos)
+                return PyScenario::from_text(text, std::move(overrides));
+              return PyScenario::from_file(text, std::move(overrides));
             }
-            return PyScenario::from_file(py::str(source).cast<std::string>());  // os.PathLike
+            return PyScenario::from_file(py::str(source).cast<std::string>(),  // os.PathLike
+                                         std::move(overrides));
           },
-          py::arg("source"),
-          "A scenario from a file path, or from YAML text (any str holding a line break).")
+          py::arg("source"), py::arg("set") = py::none(),
+          "A scenario from a file path, or from YAML text (any str holding a line break); `set` "
+          "({'measurement.file': 'm.csv'}) applies values from the start, as --set does.")
       .def(
           "set",
           [](PyScenario& self, const std::string& path, const py::object& value) -> PyScenario& {

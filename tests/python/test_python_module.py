@@ -96,6 +96,22 @@ class PythonRunsAreCommandLineRuns(unittest.TestCase):
         from_file = tcpmsim.Scenario.from_yaml(CONFIGS[0]).run()
         self.assertTrue(same_bits(from_text["muscle/force"], from_file["muscle/force"]))
 
+    def test_settings_from_the_start_are_the_command_lines_set(self):
+        # A scenario that cannot be built without a value (a measurement to replay) takes it at
+        # once; a bad one raises the --set message.
+        inputs = self.path("inputs.h5")
+        tcpmsim.Scenario.from_yaml("configs/discover/ch7_protocol.yaml").run(duration=20).save(inputs)
+        command_line_run("configs/discover/ch7_base.yaml", self.path("cli.h5"),
+                         f"measurement.file={inputs}", "scenario.duration=20 s")
+        result = tcpmsim.Scenario.from_yaml(
+            "configs/discover/ch7_base.yaml",
+            set={"measurement.file": inputs, "scenario.duration": "20 s"}).run()
+        with h5py.File(self.path("cli.h5"), "r") as record:
+            self.assertTrue(same_bits(record["load/force"][()], result["load/force"]))
+        with self.assertRaises(tcpmsim.ConfigError) as raised:
+            tcpmsim.Scenario.from_yaml("configs/discover/ch7_base.yaml")
+        self.assertIn("measurement.file", str(raised.exception))
+
     def test_runs_on_threads_equal_runs_one_at_a_time(self):
         base = tcpmsim.Scenario.from_yaml(CONFIGS[0])
         values = ["2 mN/mm", "3 mN/mm", "4 mN/mm", "5 mN/mm"]
