@@ -64,6 +64,8 @@ void write_response(Hdf5Writer& file, const InputResponse& response) {
   file.write_scalar(group + "reference_magnitude", response.reference_magnitude, response.unit);
   if (response.bandwidth) file.write_scalar(group + "bandwidth", *response.bandwidth, "Hz");
   file.attribute(path, "input", response.input);
+  file.attribute(path, "bandwidth_against",
+                 response.relative ? "the lowest frequency's |H|" : "|H| = 1");
 }
 
 }  // namespace

@@ -181,13 +181,19 @@ void analyse_response(const RecordChannels& record, const AnalysisRequest& reque
     response.unit = analysis.output_unit + "/" + input_unit;
     response.estimates = std::move(estimates[j]);
     response.reference_magnitude = 1.0;
-    if (input_unit != analysis.output_unit) {
+    response.relative = input_unit != analysis.output_unit;
+    if (response.relative) {
       for (const auto& estimate : response.estimates)
         if (std::isfinite(estimate.magnitude)) {
           response.reference_magnitude = estimate.magnitude;
           break;
         }
     }
+    if (std::none_of(response.estimates.begin(), response.estimates.end(),
+                     [](const ResponseEstimate& e) { return std::isfinite(e.magnitude); }))
+      analysis.notes.push_back(inputs[j] +
+                               ": no frequency where the estimate stands out of its confidence "
+                               "band (inputs that move together, or no response)");
     response.bandwidth = estimate_bandwidth_3db(response.estimates, response.reference_magnitude);
     std::vector<std::string> overlapping;
     for (const auto& estimate : response.estimates)
@@ -257,10 +263,9 @@ void report_response(const InputResponse& response, const RecordAnalysis& analys
     text << "  (" << shown.size() << " of " << all.size()
          << " frequencies, spaced in log f; the file holds them all)\n";
   text << "  -3 dB ("
-       << (response.reference_magnitude == 1.0
-               ? std::string("against |H| = 1")
-               : "against |H| = " + number_text(response.reference_magnitude, 4) +
-                     " at the lowest frequency, which must lie in the pass band")
+       << (!response.relative ? std::string("against |H| = 1")
+                              : "against |H| = " + number_text(response.reference_magnitude, 4) +
+                                    " at the lowest frequency, which must lie in the pass band")
        << "): "
        << (response.bandwidth ? number_text(*response.bandwidth, 4) + " Hz" : "none in range")
        << "\n";

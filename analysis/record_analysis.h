@@ -34,6 +34,7 @@ struct InputResponse {
   // tracks its input), else against the lowest frequency's |H| (a plant).
   std::optional<double> bandwidth;
   double reference_magnitude = 1.0;
+  bool relative = false;  // reference_magnitude is the lowest frequency's |H|
 };
 
 struct RecordAnalysis {

@@ -55,6 +55,7 @@ py::dict response_dict(const InputResponse& response) {
   result["overlap"] = overlap;
   result["bandwidth"] = response.bandwidth ? py::cast(*response.bandwidth) : py::none();
   result["reference_magnitude"] = response.reference_magnitude;
+  result["bandwidth_relative"] = response.relative;  // against the lowest frequency's |H|
   return result;
 }
 
