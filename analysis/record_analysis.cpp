@@ -217,8 +217,8 @@ void report_steps(const RecordAnalysis& analysis, std::ostringstream& text) {
   text << "step response of " << analysis.output << " [" << analysis.output_unit << "] against "
        << analysis.reference << " [" << analysis.reference_unit << "]: " << analysis.steps.size()
        << " steps; rise " << analysis.step_options.rise.lower * 100 << "-"
-       << analysis.step_options.rise.upper * 100 << " %, settling within "
-       << analysis.step_options.settling_band * 100 << " % of the final value\n";
+       << analysis.step_options.rise.upper * 100 << " % of the step, settling into +-"
+       << analysis.step_options.settling_band * 100 << " % of the step around the final value\n";
   text << "  step at [s]   reference   final value   rise [s]   settling [s]   overshoot [%]"
           "   steady-state error\n";
   for (const auto& step : analysis.steps) {
