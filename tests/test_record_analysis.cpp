@@ -236,3 +236,32 @@ TEST_CASE("analyze says what is wrong with a request", "[analyze]") {
   request.from = 900.0;
   CHECK_THROWS_WITH(analyze_record(record, request), Catch::Contains("fewer than two samples"));
 }
+
+TEST_CASE("Two inputs that move together cannot be told apart, and analyze says so", "[analyze]") {
+  RecordChannels record;
+  record.source = "synthetic";
+  std::uint64_t state = 12345;
+  double level = 0.0, output = 0.0;
+  for (int k = 0; k < 8000; ++k) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;  // an LCG's random steps
+    if ((state >> 60) == 0) level = double(state >> 40) / double(1ULL << 24);
+    output += 0.1 * (level - output);  // a first-order lag
+    record.time.push_back(0.1 * k);
+    record.channels["a/u"].values.push_back(level);
+    record.channels["b/u"].values.push_back(2.0 * level);  // the same input, scaled
+    record.channels["c/y"].values.push_back(output);
+  }
+  for (auto* name : {"a/u", "b/u", "c/y"}) record.channels[name].unit = "1";
+  record.inputs["a/u"] = {};
+  record.inputs["b/u"] = {};
+  AnalysisRequest request;
+  request.output = "c/y";
+  const RecordAnalysis analysis = analyze_record(record, request);
+  REQUIRE(analysis.method == "spectral");
+  REQUIRE(analysis.responses.size() == 2);
+  for (const auto& response : analysis.responses) CHECK(response.estimates.empty());
+  int notes = 0;
+  for (const auto& note : analysis.notes)
+    notes += note.find("no frequency where the estimate stands out") != std::string::npos;
+  CHECK(notes == 2);
+}
