@@ -1,23 +1,16 @@
 #include "analysis/analyze_command.h"
 
 #include <filesystem>
-#include <functional>
 #include <stdexcept>
 
 namespace tcpmsim {
 namespace {
 
-std::vector<double> each(const std::vector<StepMetrics>& steps,
-                         const std::function<double(const StepMetrics&)>& value) {
+// One value of each item: a dataset's column.
+template <typename Item, typename Value>
+std::vector<double> each(const std::vector<Item>& items, Value value) {
   std::vector<double> values;
-  for (const auto& step : steps) values.push_back(value(step));
-  return values;
-}
-
-std::vector<double> each(const std::vector<ResponseEstimate>& estimates,
-                         const std::function<double(const ResponseEstimate&)>& value) {
-  std::vector<double> values;
-  for (const auto& estimate : estimates) values.push_back(value(estimate));
+  for (const auto& item : items) values.push_back(value(item));
   return values;
 }
 

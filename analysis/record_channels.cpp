@@ -99,14 +99,9 @@ RecordChannels read_record_channels(const std::string& path) {
     if (!file.nameExists("time"))
       throw std::runtime_error(path + " is not a tcpmsim record (it has no /time)");
     record.time = read_doubles(file, "time");
-    const auto text = [&](const char* name, std::string& value) {
-      if (!file.attrExists(name)) return;
-      H5::Attribute attribute = file.openAttribute(name);
-      if (attribute.getTypeClass() == H5T_STRING) attribute.read(attribute.getStrType(), value);
-    };
-    text("scenario", record.scenario);
-    text("config_file", record.config_file);
-    text("config", record.config);
+    record.scenario = read_text_attribute(file, "scenario");
+    record.config_file = read_text_attribute(file, "config_file");
+    record.config = read_text_attribute(file, "config");
     if (file.attrExists("seed")) {
       std::uint64_t seed = 0;
       file.openAttribute("seed").read(H5::PredType::NATIVE_UINT64, &seed);

@@ -26,38 +26,60 @@ double first_reaching(std::span<const double> time, std::span<const double> resp
   }
   return kNaN;
 }
+
+// A step of the reference: its first sample, the end of its segment (the next step's first
+// sample, or the end of the data), its time and how long it holds.
+struct StepSegment {
+  std::size_t index = 0;
+  std::size_t last = 0;
+  double time = 0.0;
+  double hold = 0.0;
+};
+
+// Checks the series as `what` needs them and cuts them where the reference changes by more than
+// `threshold`.
+std::vector<StepSegment> step_segments(std::span<const double> time,
+                                       std::span<const double> reference,
+                                       std::span<const double> response, double threshold,
+                                       const char* what) {
+  require_same_length(time.size(), reference.size(), what);
+  require_same_length(time.size(), response.size(), what);
+  if (time.size() < 2)
+    throw std::invalid_argument(std::string(what) + ": need two samples at least");
+  require_time(time, what);
+  require_finite(reference, what, "reference");
+  require_finite(response, what, "response");
+  std::vector<std::size_t> steps;
+  for (std::size_t i = 1; i < time.size(); ++i)
+    if (std::abs(reference[i] - reference[i - 1]) > threshold) steps.push_back(i);
+  const std::size_t n = time.size();
+  // Each sample stands for the interval up to the next: evenly sampled data covering a 20 s
+  // hold gives a 20 s hold for the last step too.
+  const double end_of_data = time[n - 1] + (time[n - 1] - time[n - 2]);
+  std::vector<StepSegment> segments;
+  for (std::size_t j = 0; j < steps.size(); ++j) {
+    const std::size_t last = j + 1 < steps.size() ? steps[j + 1] : n;
+    segments.push_back(
+        {steps[j], last, time[steps[j]], (last < n ? time[last] : end_of_data) - time[steps[j]]});
+  }
+  return segments;
+}
 }  // namespace
 
 std::vector<StepRise> step_rise_times(std::span<const double> time,
                                       std::span<const double> reference,
                                       std::span<const double> response,
                                       const RiseTimeDefinition& definition, double threshold) {
-  const char* what = "step_rise_times";
-  require_same_length(time.size(), reference.size(), what);
-  require_same_length(time.size(), response.size(), what);
-  if (time.size() < 2) throw std::invalid_argument("step_rise_times: need two samples at least");
-  require_time(time, what);
-  require_finite(reference, what, "reference");
-  require_finite(response, what, "response");
   if (!(definition.lower >= 0.0 && definition.lower < definition.upper && definition.upper <= 1.0))
     throw std::invalid_argument("step_rise_times: need 0 <= lower < upper <= 1");
-
-  std::vector<std::size_t> steps;
-  for (std::size_t i = 1; i < time.size(); ++i) {
-    if (std::abs(reference[i] - reference[i - 1]) > threshold) steps.push_back(i);
-  }
-  const std::size_t n = time.size();
-  // Each sample stands for the interval up to the next: evenly sampled data covering a 20 s
-  // hold gives a 20 s hold for the last step too.
-  const double end_of_data = time[n - 1] + (time[n - 1] - time[n - 2]);
-
   std::vector<StepRise> rises;
-  for (std::size_t j = 0; j < steps.size(); ++j) {
+  for (const StepSegment& segment :
+       step_segments(time, reference, response, threshold, "step_rise_times")) {
     StepRise rise;
-    rise.index = steps[j];
-    const std::size_t last = j + 1 < steps.size() ? steps[j + 1] : n;
-    rise.step_time = time[rise.index];
-    rise.hold = (last < n ? time[last] : end_of_data) - rise.step_time;
+    rise.index = segment.index;
+    const std::size_t last = segment.last;
+    rise.step_time = segment.time;
+    rise.hold = segment.hold;
     rise.start = response[rise.index];
     rise.target = reference[rise.index];
     const double size = rise.target - rise.start;
@@ -115,13 +137,6 @@ std::vector<StepMetrics> step_metrics(std::span<const double> time,
                                       std::span<const double> reference,
                                       std::span<const double> response, bool same_units,
                                       const StepMetricsOptions& options) {
-  const char* what = "step_metrics";
-  require_same_length(time.size(), reference.size(), what);
-  require_same_length(time.size(), response.size(), what);
-  if (time.size() < 2) throw std::invalid_argument("step_metrics: need two samples at least");
-  require_time(time, what);
-  require_finite(reference, what, "reference");
-  require_finite(response, what, "response");
   const RiseTimeDefinition& rise = options.rise;
   if (!(rise.lower >= 0.0 && rise.lower < rise.upper && rise.upper <= 1.0))
     throw std::invalid_argument("step_metrics: need 0 <= lower < upper <= 1");
@@ -129,25 +144,20 @@ std::vector<StepMetrics> step_metrics(std::span<const double> time,
     throw std::invalid_argument("step_metrics: the final fraction must be in (0, 1]");
   if (!(options.settling_band > 0.0))
     throw std::invalid_argument("step_metrics: the settling band must be positive");
-
-  std::vector<std::size_t> steps;
-  for (std::size_t i = 1; i < time.size(); ++i)
-    if (std::abs(reference[i] - reference[i - 1]) > options.threshold) steps.push_back(i);
-  if (steps.size() > time.size() / 4)
+  const auto segments = step_segments(time, reference, response, options.threshold, "step_metrics");
+  if (segments.size() > time.size() / 4)
     throw std::invalid_argument(
-        "step_metrics: the reference changes at " + std::to_string(steps.size()) + " of " +
+        "step_metrics: the reference changes at " + std::to_string(segments.size()) + " of " +
         std::to_string(time.size()) +
         " samples, which is no step reference (raise the threshold, or analyse its frequency "
         "response)");
-  const std::size_t n = time.size();
-  const double end_of_data = time[n - 1] + (time[n - 1] - time[n - 2]);
   std::vector<StepMetrics> metrics;
-  for (std::size_t j = 0; j < steps.size(); ++j) {
+  for (const StepSegment& segment : segments) {
     StepMetrics step;
-    step.index = steps[j];
-    const std::size_t last = j + 1 < steps.size() ? steps[j + 1] : n;
-    step.step_time = time[step.index];
-    step.hold = (last < n ? time[last] : end_of_data) - step.step_time;
+    step.index = segment.index;
+    const std::size_t last = segment.last;
+    step.step_time = segment.time;
+    step.hold = segment.hold;
     step.reference = reference[step.index];
     step.start = response[step.index - 1];  // the response before the step acts
     const std::size_t samples = last - step.index;

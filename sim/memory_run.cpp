@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "sim/io/hdf5_files.h"
 #include "sim/io/hdf5_recorder.h"
 #include "sim/run.h"
 
@@ -68,7 +69,7 @@ MemoryRun run_in_memory(const Scenario& scenario, const Integrator::Progress& pr
 std::string save_record(const Scenario& scenario, const MemoryRun& run, const std::string& path) {
   Context context = scenario.make_context();
   scenario.system->prepare(context);  // the inputs as the run had them
-  try {
+  return writing_record(path, [&] {
     Hdf5Recorder recorder(path, *scenario.system, context, record_metadata(scenario));
     std::vector<double> signals(static_cast<std::size_t>(scenario.system->signal_size()),
                                 std::numeric_limits<double>::quiet_NaN());
@@ -86,12 +87,7 @@ std::string save_record(const Scenario& scenario, const MemoryRun& run, const st
       return recorder.interrupt(run.reason, run.time_reached, run.statistics);
     recorder.finish(run.statistics);
     return path;
-  } catch (const H5::Exception& error) {
-    throw std::runtime_error("cannot write " + path + ": HDF5 " + error.getFuncName() + ": " +
-                             error.getDetailMsg());
-  } catch (const std::filesystem::filesystem_error& error) {
-    throw std::runtime_error(std::string("cannot write the output: ") + error.what());
-  }
+  });
 }
 
 }  // namespace tcpmsim

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "sim/config/config_error.h"
+#include "sim/io/hdf5_files.h"
 #include "sim/io/hdf5_recorder.h"
 #include "sim/io/record_layout.h"
 #include "sim/value_check.h"
@@ -94,7 +95,7 @@ RunOutcome run_scenario(const Scenario& scenario, Context& context, const std::s
 
   const RecordMetadata metadata = record_metadata(scenario);
   RunOutcome outcome;
-  try {
+  writing_record(output_path, [&] {
     Hdf5Recorder recorder(output_path, *scenario.system, context, metadata);
     try {
       outcome.statistics = integrate(scenario, context, recorder, progress);
@@ -113,12 +114,7 @@ RunOutcome run_scenario(const Scenario& scenario, Context& context, const std::s
       outcome.output_path =
           recorder.interrupt(interruption.what(), interruption.time(), interruption.statistics());
     }
-  } catch (const H5::Exception& error) {
-    throw std::runtime_error("cannot write " + output_path + ": HDF5 " + error.getFuncName() +
-                             ": " + error.getDetailMsg());
-  } catch (const std::filesystem::filesystem_error& error) {
-    throw std::runtime_error(std::string("cannot write the output: ") + error.what());
-  }
+  });
   outcome.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return outcome;

@@ -81,12 +81,17 @@ std::vector<double> read_doubles(const H5::H5Location& location, const std::stri
   return values;
 }
 
-std::string units_of(const H5::H5Object& object) {
-  if (!object.attrExists("units")) return "";
-  H5::Attribute attribute = object.openAttribute("units");
+std::string read_text_attribute(const H5::H5Object& object, const std::string& name) {
+  if (!object.attrExists(name)) return "";
+  H5::Attribute attribute = object.openAttribute(name);
+  if (attribute.getTypeClass() != H5T_STRING) return "";
   std::string value;
   attribute.read(attribute.getStrType(), value);
   return value;
+}
+
+std::string units_of(const H5::H5Object& object) {
+  return read_text_attribute(object, "units");
 }
 
 }  // namespace tcpmsim

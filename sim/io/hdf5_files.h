@@ -2,7 +2,9 @@
 
 #include <H5Cpp.h>
 
+#include <filesystem>
 #include <mutex>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -41,7 +43,23 @@ void write_text_array_attribute(H5::H5Object& object, const std::string& name,
 
 // A dataset's values as doubles, whatever its shape (row-major).
 std::vector<double> read_doubles(const H5::H5Location& location, const std::string& name);
+// A scalar text attribute, or empty when there is none (or it is not text).
+std::string read_text_attribute(const H5::H5Object& object, const std::string& name);
 // A dataset's "units" attribute, or empty.
 std::string units_of(const H5::H5Object& object);
+
+// Runs `write`, which writes the record at `path`, turning the HDF5 library's and the file
+// system's exceptions into std::runtime_error naming the file.
+template <typename Write>
+decltype(auto) writing_record(const std::string& path, Write&& write) {
+  try {
+    return write();
+  } catch (const H5::Exception& error) {
+    throw std::runtime_error("cannot write " + path + ": HDF5 " + error.getFuncName() + ": " +
+                             error.getDetailMsg());
+  } catch (const std::filesystem::filesystem_error& error) {
+    throw std::runtime_error(std::string("cannot write the output: ") + error.what());
+  }
+}
 
 }  // namespace tcpmsim

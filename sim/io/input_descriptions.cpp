@@ -8,15 +8,6 @@
 namespace tcpmsim {
 namespace {
 
-std::string text_attribute(const H5::H5Object& object, const std::string& name) {
-  if (!object.attrExists(name)) return "";
-  H5::Attribute attribute = object.openAttribute(name);
-  if (attribute.getTypeClass() != H5T_STRING) return "";
-  std::string value;
-  attribute.read(attribute.getStrType(), value);
-  return value;
-}
-
 std::vector<std::string> text_array_attribute(const H5::H5Object& object, const std::string& name) {
   if (!object.attrExists(name)) return {};
   H5::Attribute attribute = object.openAttribute(name);
@@ -78,7 +69,7 @@ void collect_inputs(const H5::Group& group, const std::string& prefix,
 
 SignalDescription read_signal_description(const H5::Group& group) {
   SignalDescription description;
-  description.type = text_attribute(group, "type");
+  description.type = read_text_attribute(group, "type");
   for (int k = 0; k < group.getNumAttrs(); ++k) {
     H5::Attribute attribute = group.openAttribute(static_cast<unsigned>(k));
     if (attribute.getTypeClass() != H5T_FLOAT && attribute.getTypeClass() != H5T_INTEGER) continue;
