@@ -95,7 +95,7 @@ std::vector<OutputDeclaration> CoilImpedance::outputs() const {
 }
 
 std::vector<InputDeclaration> CoilImpedance::inputs() const {
-  const InputDeclaration mutual{"mutual_inductances", true, false, InputArity::many};
+  const InputDeclaration mutual{"mutual_inductances", true, false, InputArity::many, true};
   if (needs_temperature()) return {{"deflection", true}, {"temperature", true}, mutual};
   return {{"deflection", true}, mutual};
 }

@@ -53,6 +53,7 @@ py::dict statistics(const MemoryRun& run) {
   stats["rhs_evaluations_for_jacobian"] = s.rhs_evaluations_for_jacobian;
   stats["jacobian_evaluations"] = s.jacobian_evaluations;
   stats["linear_solver_setups"] = s.linear_solver_setups;
+  stats["linear_iterations"] = s.linear_iterations;
   stats["error_test_failures"] = s.error_test_failures;
   stats["nonlinear_iterations"] = s.nonlinear_iterations;
   stats["nonlinear_convergence_failures"] = s.nonlinear_convergence_failures;

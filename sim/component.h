@@ -46,11 +46,14 @@ enum class InputArity {
 // feed each other without an algebraic loop.
 // A sampled input is read only at breakpoints (a controller's sample instants), so it may
 // read observed outputs.
+// An input between members couples separate members of a group (a bundle's touching
+// neighbours): the whole Jacobian holds its entries, a block preconditioner leaves them out.
 struct InputDeclaration {
   std::string name;
   bool direct_feedthrough;
   bool sampled = false;
   InputArity arity = InputArity::one;
+  bool between_members = false;
 };
 
 // A prescribed signal a component applies (an imposed deflection, a power demand, an ambient

@@ -1,5 +1,6 @@
 #include "sim/integrator.h"
 
+#include "sim/block_preconditioner.h"
 #include "sim/forward_sensitivity.h"
 #include "sim/serial_vector_kernels.h"
 #include "sim/time_grid.h"
@@ -11,6 +12,7 @@
 #include <sunlinsol/sunlinsol_band.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunlinsol/sunlinsol_klu.h>
+#include <sunlinsol/sunlinsol_spgmr.h>
 #include <sunmatrix/sunmatrix_band.h>
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
@@ -28,8 +30,9 @@ struct detail::CvodeHandles {
   SUNContext sundials = nullptr;
   N_Vector state = nullptr;
   N_Vector scratch = nullptr;
-  SUNMatrix matrix = nullptr;
+  SUNMatrix matrix = nullptr;  // the Newton matrix's; with GMRES, the Jacobian for J v
   SUNLinearSolver linear_solver = nullptr;
+  std::unique_ptr<BlockPreconditioner> preconditioner;  // GMRES's
   SUNNonlinearSolver nonlinear_solver = nullptr;
   void* memory = nullptr;
 
@@ -68,6 +71,7 @@ struct detail::CvodeHandles {
   std::vector<double> carried_jacobian;  // the pattern's entries, column by column
   bool offer_carried_jacobian = false;
   long carried_jacobians = 0;         // handed back since the last count: CVODE counts them as new
+  long preconditioner_jacobians = 0;  // asked for by the preconditioner since the last count
   long jacobian_rhs_evaluations = 0;  // by the grouped differences, since the last count
   long steps = 0;                     // over the whole run, across restarts
   long jacobian_step = -1;    // `steps` when the carried Jacobian was computed; -1: none yet
@@ -89,6 +93,7 @@ struct detail::CvodeHandles {
     if (sensitivity_state) N_VDestroyVectorArray(sensitivity_state, sensitivity_count);
     if (nonlinear_solver) SUNNonlinSolFree(nonlinear_solver);
     if (linear_solver) SUNLinSolFree(linear_solver);
+    preconditioner.reset();
     if (matrix) SUNMatDestroy(matrix);
     if (scratch) N_VDestroy(scratch);
     if (state) N_VDestroy(state);
@@ -429,6 +434,36 @@ int setup_repivoting_on_failure(SUNLinearSolver solver, SUNMatrix matrix) {
   return SUNLinSolSetup_KLU(solver, matrix);
 }
 
+// GMRES's preconditioner set-up: a Jacobian when CVODE asks for a fresh one (jok false), with
+// the same reuse and carrying as for a direct solver, then P = I - gamma J_B factored.
+int preconditioner_setup(realtype t, N_Vector y, N_Vector fy, booleantype jacobian_ok,
+                         booleantype* jacobian_current, realtype gamma, void* user_data) {
+  auto& cv = cvode_of(user_data);
+  *jacobian_current = SUNFALSE;
+  if (!jacobian_ok) {
+    if (!cv.chain_rules.empty())  // they add to their entries, as CVODE's zeroing lets them
+      std::fill_n(SUNSparseMatrix_Data(cv.matrix), SUNSparseMatrix_NNZ(cv.matrix), 0.0);
+    const int flag = grouped_jacobian(t, y, fy, cv.matrix, user_data, nullptr, nullptr, nullptr);
+    if (flag != 0) return flag;
+    ++cv.preconditioner_jacobians;
+    *jacobian_current = SUNTRUE;
+  }
+  return cv.preconditioner->setup(cv.matrix, gamma);
+}
+
+int preconditioner_solve(realtype, N_Vector, N_Vector, N_Vector r, N_Vector z, realtype, realtype,
+                         int, void* user_data) {
+  return cvode_of(user_data).preconditioner->solve(r, z);
+}
+
+// J v with the Jacobian of the last set-up: GMRES then solves the system a direct solver would
+// (modified Newton), at a sparse product per iteration instead of a right-hand side.
+int jacobian_times(N_Vector v, N_Vector product, realtype, N_Vector, N_Vector, void* user_data,
+                   N_Vector) {
+  multiply_sparse(cvode_of(user_data).matrix, v, product);
+  return 0;
+}
+
 void capture_error(int, const char* module, const char* function, char* message, void* user_data) {
   cvode_of(user_data).last_message = std::string(module) + "/" + function + ": " + message;
 }
@@ -493,7 +528,8 @@ void Integrator::attach_linear_solver() {
   cv.warm_restarts = settings_.restart == RestartKind::warm;
   // Our grouped Jacobian for KLU, and for every matrix kind with warm restarts (which carry
   // it); CVODE's own difference quotients for dense and band otherwise.
-  const bool grouped = settings_.linear_solver == LinearSolverKind::klu || cv.warm_restarts;
+  const bool grouped = settings_.linear_solver == LinearSolverKind::klu ||
+                       settings_.linear_solver == LinearSolverKind::gmres || cv.warm_restarts;
   if (grouped || settings_.linear_solver == LinearSolverKind::band)
     cv.pattern = system_.jacobian_pattern();
   if (grouped) {
@@ -523,11 +559,32 @@ void Integrator::attach_linear_solver() {
         cv.linear_solver->ops->setup = setup_repivoting_on_failure;
       }
       break;
+    case LinearSolverKind::gmres:
+      attach_krylov_solver();
+      return;
   }
   if (!cv.matrix || !cv.linear_solver)
     throw std::runtime_error("could not create the linear solver");
   check(CVodeSetLinearSolver(cv.memory, cv.linear_solver, cv.matrix), "CVodeSetLinearSolver");
   if (grouped) check(CVodeSetJacFn(cv.memory, grouped_jacobian), "CVodeSetJacFn");
+}
+
+// GMRES, preconditioned on the left by the Jacobian within members (BlockPreconditioner), with
+// J v from the Jacobian the preconditioner was built from.
+void Integrator::attach_krylov_solver() {
+  auto& cv = *cvode_;
+  const int size = system_.state_size();
+  cv.matrix = SUNSparseMatrix(size, size, cv.pattern.non_zeros(), CSC_MAT, cv.sundials);
+  if (!cv.matrix) throw std::runtime_error("could not create the Jacobian's matrix");
+  write_structure(cv.pattern, cv.matrix);
+  cv.preconditioner = std::make_unique<BlockPreconditioner>(
+      cv.pattern, system_.jacobian_pattern(JacobianEntries::within_members), cv.state, cv.sundials);
+  cv.linear_solver = SUNLinSol_SPGMR(cv.state, SUN_PREC_LEFT, 0, cv.sundials);
+  if (!cv.linear_solver) throw std::runtime_error("could not create the GMRES solver");
+  check(CVodeSetLinearSolver(cv.memory, cv.linear_solver, nullptr), "CVodeSetLinearSolver");
+  check(CVodeSetPreconditioner(cv.memory, preconditioner_setup, preconditioner_solve),
+        "CVodeSetPreconditioner");
+  check(CVodeSetJacTimes(cv.memory, nullptr, jacobian_times), "CVodeSetJacTimes");
 }
 
 void Integrator::accumulate_statistics() {
@@ -545,8 +602,11 @@ void Integrator::accumulate_statistics() {
   add(CVodeGetNumNonlinSolvConvFails, cv.memory, statistics_.nonlinear_convergence_failures);
   if (settings_.method == IntegrationMethod::bdf) {
     add(CVodeGetNumJacEvals, cv.memory, statistics_.jacobian_evaluations);
-    statistics_.jacobian_evaluations -= cv.carried_jacobians;  // computed ones only
+    // Computed ones only: CVODE counts the carried ones, and not the preconditioner's.
+    statistics_.jacobian_evaluations += cv.preconditioner_jacobians - cv.carried_jacobians;
     cv.carried_jacobians = 0;
+    cv.preconditioner_jacobians = 0;
+    add(CVodeGetNumLinIters, cv.memory, statistics_.linear_iterations);
     statistics_.rhs_evaluations_for_jacobian += cv.jacobian_rhs_evaluations;
     cv.jacobian_rhs_evaluations = 0;
     add(CVodeGetNumLinRhsEvals, cv.memory, statistics_.rhs_evaluations_for_jacobian);

@@ -17,7 +17,11 @@ namespace detail {
 struct CvodeHandles;
 }
 
-enum class LinearSolverKind { dense, band, klu };
+// The Newton iteration's linear solver: direct (dense, band, KLU on the sparse pattern), or
+// GMRES preconditioned by the Jacobian within members (KLU on each member's block), whose cost
+// stays linear in the members when their coupling (a bundle's contact conduction) makes the
+// whole matrix's LU fill grow faster.
+enum class LinearSolverKind { dense, band, klu, gmres };
 
 // BDF with Newton iteration for stiff systems (the muscles: thermal and mechanical time
 // constants seconds apart); Adams-Moulton with fixed-point iteration for non-stiff oscillatory
@@ -51,8 +55,9 @@ struct SolverStatistics {
   long error_test_failures = 0;
   long nonlinear_iterations = 0;
   long nonlinear_convergence_failures = 0;
-  long segments = 0;  // hard stops + 1
-  long events = 0;    // located zero crossings
+  long linear_iterations = 0;  // GMRES's (0 for a direct solver)
+  long segments = 0;           // hard stops + 1
+  long events = 0;             // located zero crossings
   long output_samples = 0;
 };
 
@@ -142,6 +147,7 @@ class Integrator {
 
  private:
   void attach_linear_solver();
+  void attach_krylov_solver();
   void start_segment(double start, bool first);
   void start_sensitivities(bool first);
   void record_sensitivities(double when, const double* state);

@@ -20,6 +20,8 @@ const char* linear_solver_name(LinearSolverKind kind) {
       return "band";
     case LinearSolverKind::klu:
       return "klu";
+    case LinearSolverKind::gmres:
+      return "gmres";
     case LinearSolverKind::dense:
       break;
   }

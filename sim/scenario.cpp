@@ -83,7 +83,8 @@ void read_absolute_tolerances(const ConfigNode& solver, const System& system,
 // were validated that way, and a default not written into the resolved config keeps them.
 std::string read_restart(const ConfigNode& solver, LinearSolverKind linear_solver) {
   const std::vector<std::string> options{"cold", "warm"};
-  if (linear_solver == LinearSolverKind::klu) return solver.choice_or("restart", options, "warm");
+  if (linear_solver == LinearSolverKind::klu || linear_solver == LinearSolverKind::gmres)
+    return solver.choice_or("restart", options, "warm");
   if (const auto given = solver.find("restart")) return given->as_choice(options);
   return "cold";
 }
@@ -117,11 +118,12 @@ SolverSettings read_solver(const ConfigNode& root, const System& system) {
   settings.relative_tolerance =
       solver->number_or("rtol", settings.relative_tolerance, ValueCheck::between(1e-14, 0.1));
   const std::string kind = solver->choice_or(
-      "linear_solver", {"dense", "band", "klu"},
+      "linear_solver", {"dense", "band", "klu", "gmres"},
       default_linear_solver(system, settings.method) == LinearSolverKind::klu ? "klu" : "dense");
-  settings.linear_solver = kind == "band"  ? LinearSolverKind::band
-                           : kind == "klu" ? LinearSolverKind::klu
-                                           : LinearSolverKind::dense;
+  settings.linear_solver = kind == "band"    ? LinearSolverKind::band
+                           : kind == "klu"   ? LinearSolverKind::klu
+                           : kind == "gmres" ? LinearSolverKind::gmres
+                                             : LinearSolverKind::dense;
   settings.restart = read_restart(*solver, settings.linear_solver) == "warm" ? RestartKind::warm
                                                                              : RestartKind::cold;
   settings.max_step = solver->quantity_or("max_step", "s", 0.0, ValueCheck::non_negative());

@@ -526,7 +526,12 @@ const ChannelInfo* System::source_of(const Component& consumer, std::string_view
   return nullptr;
 }
 
-std::vector<std::vector<int>> System::signal_state_dependencies() const {
+bool System::reads_input(std::size_t component, int input, JacobianEntries entries) const {
+  return entries == JacobianEntries::all ||
+         !inputs_[component][static_cast<std::size_t>(input)].between_members;
+}
+
+std::vector<std::vector<int>> System::signal_state_dependencies(JacobianEntries entries) const {
   // States each signal depends on, through chains of direct feedthrough.
   std::vector<std::vector<int>> signal_states(channels_.size());
   std::vector<char> resolved(channels_.size(), 0);
@@ -539,6 +544,7 @@ std::vector<std::vector<int>> System::signal_state_dependencies() const {
     std::set<int> collected;
     for (int s : deps.states) collected.insert(owner.state_offset_ + s);
     for (int i : deps.inputs) {
+      if (!reads_input(static_cast<std::size_t>(signal_owner_[index]), i, entries)) continue;
       const auto input = static_cast<std::size_t>(i);
       for (int k = 0; k < owner.fan_in_count_[input]; ++k) {
         const auto& upstream = self(
@@ -556,13 +562,14 @@ std::vector<std::vector<int>> System::signal_state_dependencies() const {
 
 // The states derivative `s` of `component` reads, except through the input `skipped` (-1: none).
 std::set<int> System::derivative_columns(const std::vector<std::vector<int>>& signal_states,
-                                         std::size_t c, int s, int skipped) const {
+                                         std::size_t c, int s, int skipped,
+                                         JacobianEntries entries) const {
   const Component& component = *components_[c];
   const auto deps = component.derivative_dependencies(s);
   std::set<int> columns;
   for (int d : deps.states) columns.insert(component.state_offset_ + d);
   for (int i : deps.inputs) {
-    if (i == skipped) continue;
+    if (i == skipped || !reads_input(c, i, entries)) continue;
     const auto input = static_cast<std::size_t>(i);
     for (int k = 0; k < component.fan_in_count_[input]; ++k) {
       const auto& upstream = signal_states[static_cast<std::size_t>(
@@ -574,15 +581,15 @@ std::set<int> System::derivative_columns(const std::vector<std::vector<int>>& si
   return columns;
 }
 
-SparsityPattern System::jacobian_pattern() const {
-  const auto signal_states = signal_state_dependencies();
+SparsityPattern System::jacobian_pattern(JacobianEntries entries) const {
+  const auto signal_states = signal_state_dependencies(entries);
   SparsityPattern pattern;
   pattern.size = state_size();
   pattern.rows_of_column.assign(static_cast<std::size_t>(state_size()), {});
   for (std::size_t c = 0; c < components_.size(); ++c) {
     for (int s = 0; s < state_counts_[c]; ++s) {
       const int row = components_[c]->state_offset_ + s;
-      for (int column : derivative_columns(signal_states, c, s, -1))
+      for (int column : derivative_columns(signal_states, c, s, -1, entries))
         pattern.rows_of_column[static_cast<std::size_t>(column)].push_back(row);
     }
   }

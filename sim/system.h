@@ -75,6 +75,9 @@ struct MemberSet {
 // of a bundle): its Jacobian row is dense, and finite differences over structurally orthogonal
 // columns would need a group per column. The Integrator finds its entries by the chain rule
 // through the fan-in's source signals instead.
+// Which entries of the Jacobian's pattern: all, or those within members only.
+enum class JacobianEntries { all, within_members };
+
 struct FanInRow {
   int row = 0;                                  // the derivative's state index
   int component = 0;                            // its owner
@@ -155,8 +158,10 @@ class System {
   // or an empty string.
   std::string check_component_contracts(Context& context, double time, const double* state) const;
 
-  // Structural non-zeros of df/dy (row = derivative, column = state).
-  SparsityPattern jacobian_pattern() const;
+  // Structural non-zeros of df/dy (row = derivative, column = state): all of them, or only
+  // those within members (without what inputs between members carry), a block
+  // preconditioner's pattern.
+  SparsityPattern jacobian_pattern(JacobianEntries entries = JacobianEntries::all) const;
   // The derivatives that read at least `min_sources` outputs through one fan-in input.
   std::vector<FanInRow> fan_in_rows(int min_sources) const;
   // d f_row / d signal at (time, state) by central differences of the row's component alone
@@ -171,9 +176,13 @@ class System {
   System() = default;
   Evaluation evaluation(Context& context, double time, double signal_time,
                         const double* state) const;
-  std::vector<std::vector<int>> signal_state_dependencies() const;
+  std::vector<std::vector<int>> signal_state_dependencies(
+      JacobianEntries entries = JacobianEntries::all) const;
   std::set<int> derivative_columns(const std::vector<std::vector<int>>& signal_states,
-                                   std::size_t component, int state, int skipped_input) const;
+                                   std::size_t component, int state, int skipped_input,
+                                   JacobianEntries entries = JacobianEntries::all) const;
+  // Whether `entries` reads input `input` of component `component`.
+  bool reads_input(std::size_t component, int input, JacobianEntries entries) const;
   void assign_slices();
   void wire(const SystemBuilder& builder);
   void order_by_feedthrough();

@@ -108,7 +108,7 @@ std::vector<OutputDeclaration> PackedHeatExchange::outputs() const {
 
 std::vector<InputDeclaration> PackedHeatExchange::inputs() const {
   return {{"temperature", true},
-          {"neighbour_temperatures", true, false, InputArity::many},
+          {"neighbour_temperatures", true, false, InputArity::many, true},
           {"ambient_temperature", true},
           {"fan_speed", true}};
 }

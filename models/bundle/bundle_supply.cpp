@@ -68,7 +68,7 @@ std::vector<OutputDeclaration> BundleSupply::outputs() const {
 }
 
 std::vector<InputDeclaration> BundleSupply::inputs() const {
-  return {{"resistance", true, false, InputArity::many}};
+  return {{"resistance", true, false, InputArity::many, true}};
 }
 
 std::vector<SignalDeclaration> BundleSupply::signals() const {

@@ -90,6 +90,9 @@ void write_statistics(H5::H5Object& root, const SolverStatistics& statistics) {
                std::int64_t{statistics.nonlinear_iterations});
   write_scalar(root, "solver_nonlinear_convergence_failures", type,
                std::int64_t{statistics.nonlinear_convergence_failures});
+  if (statistics.linear_iterations > 0)  // GMRES's; direct solvers' records stay as they were
+    write_scalar(root, "solver_linear_iterations", type,
+                 std::int64_t{statistics.linear_iterations});
   write_scalar(root, "solver_segments", type, std::int64_t{statistics.segments});
   write_scalar(root, "solver_events", type, std::int64_t{statistics.events});
   write_scalar(root, "samples", type, std::int64_t{statistics.output_samples});
