@@ -149,7 +149,8 @@ TEST_CASE("Non-physical values are rejected") {
 
 TEST_CASE("A choice outside its options suggests the nearest one") {
   CHECK(error_of(replaced(kValid, "linear_solver: dense", "linear_solver: dens")) ==
-        "test.yaml:3:39: error: solver.linear_solver: expected one of dense, band, klu, got 'dens' "
+        "test.yaml:3:39: error: solver.linear_solver: expected one of dense, band, klu, gmres, got "
+        "'dens' "
         "(did you mean 'dense'?)");
   // With any linear solver, not only with KLU (where the default is read with the others).
   CHECK(error_of(replaced(kValid, "linear_solver: dense", "linear_solver: dense, restart: warn")) ==
