@@ -8,16 +8,13 @@
 #include <sstream>
 
 #include "identification/fit_report.h"
+#include "identification/json_numbers.h"
 #include "sim/io/hdf5_writer.h"
 #include "sim/value_check.h"
 
 namespace tcpmsim::fit {
 
 namespace {
-
-nlohmann::json number_or_null(double value) {
-  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
-}
 
 const FitProblem& problem_of(const Discovery& discovery) {
   return discovery.setup.base.problem;

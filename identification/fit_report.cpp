@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "identification/json_numbers.h"
 #include "kinds/standard_kinds.h"
 #include "sim/config/config_node.h"
 #include "sim/io/hdf5_writer.h"
@@ -16,10 +17,6 @@
 namespace tcpmsim::fit {
 
 namespace {
-
-nlohmann::json number_or_null(double value) {
-  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
-}
 
 nlohmann::json window_json(const FitSpec& spec, const WindowScore& score) {
   nlohmann::json window = nlohmann::json::object();
