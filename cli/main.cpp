@@ -172,10 +172,13 @@ int run(const Options& options) {
   if (!options.quiet) {
     std::cout << "wrote " << outcome.output_path << ": " << stats.output_samples << " samples; "
               << stats.steps << " steps, " << stats.rhs_evaluations << " RHS evaluations, "
-              << stats.jacobian_evaluations << " Jacobians, " << stats.error_test_failures
-              << " error-test failures, " << stats.nonlinear_convergence_failures
-              << " convergence failures, " << stats.segments << " segments; "
-              << outcome.wall_seconds << " s wall\n";
+              << stats.jacobian_evaluations << " Jacobians, "
+              << (stats.linear_iterations > 0
+                      ? std::to_string(stats.linear_iterations) + " GMRES iterations, "
+                      : std::string())
+              << stats.error_test_failures << " error-test failures, "
+              << stats.nonlinear_convergence_failures << " convergence failures, " << stats.segments
+              << " segments; " << outcome.wall_seconds << " s wall\n";
   }
   return kSuccess;
 }
