@@ -577,6 +577,8 @@ void Integrator::attach_krylov_solver() {
   cv.matrix = SUNSparseMatrix(size, size, cv.pattern.non_zeros(), CSC_MAT, cv.sundials);
   if (!cv.matrix) throw std::runtime_error("could not create the Jacobian's matrix");
   write_structure(cv.pattern, cv.matrix);
+  // CVODE sets up before its first solve; zeros until then all the same.
+  std::fill_n(SUNSparseMatrix_Data(cv.matrix), SUNSparseMatrix_NNZ(cv.matrix), 0.0);
   cv.preconditioner = std::make_unique<BlockPreconditioner>(
       cv.pattern, system_.jacobian_pattern(JacobianEntries::within_members), cv.state, cv.sundials);
   cv.linear_solver = SUNLinSol_SPGMR(cv.state, SUN_PREC_LEFT, 0, cv.sundials);
