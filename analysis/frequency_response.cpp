@@ -11,6 +11,7 @@
 #include <unsupported/Eigen/FFT>
 
 #include "analysis/series_checks.h"
+#include "sim/not_a_number.h"
 
 namespace tcpmsim {
 
@@ -110,7 +111,6 @@ std::optional<double> bandwidth_3db(std::span<const FrequencyResponsePoint> poin
 namespace tcpmsim {
 
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // The 95 % circle of a complex Gaussian with independent components of standard deviation s
 // has radius sqrt(chi2_2(0.95)) s = sqrt(-2 ln 0.05) s.
 const double kCircle95 = std::sqrt(-2.0 * std::log(0.05));

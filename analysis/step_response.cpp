@@ -8,11 +8,11 @@
 
 #include "analysis/series_checks.h"
 #include "analysis/statistics.h"
+#include "sim/not_a_number.h"
 
 namespace tcpmsim {
 
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // The first time in samples [first, last) at which the response reaches `level` going in
 // `direction`, interpolated linearly; NaN if it does not.

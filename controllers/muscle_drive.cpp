@@ -10,9 +10,8 @@
 namespace tcpmsim {
 
 namespace {
-using P = MuscleDriveParameters;
 
-PwmSupply supply_of(const P& p) {
+PwmSupply supply_of(const MuscleDriveParameters& p) {
   return {p.supply_voltage, p.series_resistance};
 }
 
@@ -23,12 +22,13 @@ std::string demand_problem(const Signal& demand, double duration) {
 
 // A run's parameters, its random stream and what the drive holds between instants.
 struct MuscleDrive::Run final : RunState {
-  explicit Run(const P& values) : p(values), random(values.seed, values.stream) {}
+  explicit Run(const MuscleDriveParameters& values)
+      : p(values), random(values.seed, values.stream) {}
   double period() const { return 1.0 / p.pwm_frequency; }
   // Quantisation, noise, spikes.
   double measured(double decay_time);
 
-  P p;
+  MuscleDriveParameters p;
   RandomStream random;
   // Held from the latest period start / switching edge.
   double last_on_current = 0.0;
@@ -69,32 +69,32 @@ std::unique_ptr<MuscleDrive> MuscleDrive::from_config(const std::string& group,
                                                       const SignalContext& signals) {
   node.declare({"model", "fidelity", "pwm_frequency", "supply_voltage", "series_resistance",
                 "measurement", "power"});
-  P p;
-  ParameterBindings<P> bind;
+  MuscleDriveParameters p;
+  ParameterBindings<MuscleDriveParameters> bind;
   p.fidelity = node.choice_or("fidelity", {"averaged", "switched"}, "averaged") == "switched"
-                   ? P::Fidelity::switched
-                   : P::Fidelity::averaged;
+                   ? MuscleDriveParameters::Fidelity::switched
+                   : MuscleDriveParameters::Fidelity::averaged;
   bind.quantity_or(node, "pwm_frequency", "Hz", 20.0, ValueCheck::positive(), p,
-                   bind.member(&P::pwm_frequency));
+                   bind.member(&MuscleDriveParameters::pwm_frequency));
   bind.quantity(node, "supply_voltage", "V", ValueCheck::positive(), p,
-                bind.member(&P::supply_voltage));
+                bind.member(&MuscleDriveParameters::supply_voltage));
   bind.quantity(node, "series_resistance", "ohm", ValueCheck::non_negative(), p,
-                bind.member(&P::series_resistance));
+                bind.member(&MuscleDriveParameters::series_resistance));
   const auto measurement = node.at("measurement");
   measurement.declare({"threshold_current", "path_resistance", "timer_resolution", "timing_noise",
                        "spike_probability", "spike_size"});
   bind.quantity(measurement, "threshold_current", "A", ValueCheck::positive(), p,
-                bind.member(&P::threshold_current));
+                bind.member(&MuscleDriveParameters::threshold_current));
   bind.quantity_or(measurement, "path_resistance", "ohm", 0.0, ValueCheck::non_negative(), p,
-                   bind.member(&P::path_resistance));
+                   bind.member(&MuscleDriveParameters::path_resistance));
   bind.quantity_or(measurement, "timer_resolution", "s", 0.0, ValueCheck::non_negative(), p,
-                   bind.member(&P::timer_resolution));
+                   bind.member(&MuscleDriveParameters::timer_resolution));
   bind.quantity_or(measurement, "timing_noise", "s", 0.0, ValueCheck::non_negative(), p,
-                   bind.member(&P::timing_noise));
+                   bind.member(&MuscleDriveParameters::timing_noise));
   bind.quantity_or(measurement, "spike_probability", "1", 0.0, ValueCheck::fraction(), p,
-                   bind.member(&P::spike_probability));
+                   bind.member(&MuscleDriveParameters::spike_probability));
   bind.quantity_or(measurement, "spike_size", "s", 0.0, ValueCheck::non_negative(), p,
-                   bind.member(&P::spike_size));
+                   bind.member(&MuscleDriveParameters::spike_size));
   p.seed = signals.seed;
   // The drive of the single-muscle scenario keeps its historical stream, so that its records
   // stay what they were; every other drive has its own.
@@ -110,7 +110,7 @@ std::unique_ptr<MuscleDrive> MuscleDrive::from_config(const std::string& group,
 }
 
 std::vector<StateDeclaration> MuscleDrive::states() const {
-  if (defaults_.fidelity == P::Fidelity::averaged) return {};
+  if (defaults_.fidelity == MuscleDriveParameters::Fidelity::averaged) return {};
   return {{"current", "A", 1e-7}};
 }
 
@@ -121,7 +121,7 @@ std::vector<OutputDeclaration> MuscleDrive::outputs() const {
 
 std::vector<InputDeclaration> MuscleDrive::inputs() const {
   // The switched current's derivative reads L; the averaged drive reads it only to measure.
-  const bool switched = defaults_.fidelity == P::Fidelity::switched;
+  const bool switched = defaults_.fidelity == MuscleDriveParameters::Fidelity::switched;
   std::vector<InputDeclaration> declared{{"heater_resistance", true},
                                          {"inductance", false, !switched}};
   if (!power_demand_) declared.push_back({"power_command", false, true});
@@ -175,7 +175,7 @@ void MuscleDrive::sense(const Evaluation& evaluation) const {
   // of the off-phase just ended from L and R now, before the estimator samples, as the
   // switched drive's located crossing is available by then.
   Run& run = mutable_run_state<Run>(evaluation);
-  if (run.p.fidelity != P::Fidelity::averaged) return;
+  if (run.p.fidelity != MuscleDriveParameters::Fidelity::averaged) return;
   // Nothing to report after a period with the current always on, or never on.
   const auto k = grid_index_at(evaluation.time, run.period());
   if (!k || *k < 1 || run.on_fraction >= 1.0 || run.on_fraction <= 0.0) return;
@@ -189,7 +189,7 @@ double MuscleDrive::next_breakpoint_after(const Evaluation& evaluation) const {
   const Run& run = run_state<Run>(evaluation);
   const double t = evaluation.time;
   double next = next_grid_instant(t, run.period());
-  if (run.p.fidelity == P::Fidelity::switched && run.on && run.on_until > t) {
+  if (run.p.fidelity == MuscleDriveParameters::Fidelity::switched && run.on && run.on_until > t) {
     next = std::min(next, run.on_until);
   }
   return next;
@@ -198,7 +198,7 @@ double MuscleDrive::next_breakpoint_after(const Evaluation& evaluation) const {
 void MuscleDrive::compute_outputs(const Evaluation& evaluation) const {
   const Run& run = run_state<Run>(evaluation);
   const double resistance = input(evaluation, kHeaterResistance);
-  if (run.p.fidelity == P::Fidelity::averaged) {
+  if (run.p.fidelity == MuscleDriveParameters::Fidelity::averaged) {
     const double power = run.on_fraction * supply_of(run.p).full_power(resistance);  // (7.2)
     set_output(evaluation, kPower, power);
     set_output(evaluation, kCurrent, std::sqrt(power / resistance));  // RMS
@@ -215,7 +215,7 @@ void MuscleDrive::compute_outputs(const Evaluation& evaluation) const {
 
 void MuscleDrive::compute_derivatives(const Evaluation& evaluation, double* derivatives) const {
   const Run& run = run_state<Run>(evaluation);
-  if (run.p.fidelity == P::Fidelity::averaged) return;
+  if (run.p.fidelity == MuscleDriveParameters::Fidelity::averaged) return;
   const double resistance = input(evaluation, kHeaterResistance);
   const double current = state(evaluation, 0);
   const double voltage = run.on ? run.p.supply_voltage : 0.0;
@@ -226,7 +226,7 @@ void MuscleDrive::compute_derivatives(const Evaluation& evaluation, double* deri
 }
 
 int MuscleDrive::event_count() const {
-  return defaults_.fidelity == P::Fidelity::switched ? 1 : 0;
+  return defaults_.fidelity == MuscleDriveParameters::Fidelity::switched ? 1 : 0;
 }
 
 void MuscleDrive::event_functions(const Evaluation& evaluation, double* values) const {

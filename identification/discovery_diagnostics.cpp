@@ -7,13 +7,12 @@
 #include <sstream>
 
 #include "identification/effect_catalogue.h"
+#include "sim/not_a_number.h"
 #include "sim/value_check.h"
 
 namespace tcpmsim::fit {
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // The residual's bands: drift and warm-up, the protocol's slow and fast excitation, and the rest
 // up to Nyquist.

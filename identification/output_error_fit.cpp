@@ -9,6 +9,7 @@
 #include <mutex>
 #include <numeric>
 
+#include "sim/not_a_number.h"
 #include "sim/parallel_runs.h"
 #include "sim/value_check.h"
 #include "sweep/sweep_design.h"
@@ -16,8 +17,6 @@
 namespace tcpmsim::fit {
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // The parameters in SI from the optimiser's coordinates: each bound range mapped to [0, 1].
 std::vector<double> physical(const FitProblem& problem, const double* unit_values) {

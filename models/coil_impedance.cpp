@@ -3,9 +3,9 @@
 namespace tcpmsim {
 
 namespace {
-using P = CoilImpedanceParameters;
 
-void read_inductance(const ConfigNode& node, P& p, ParameterBindings<P>& bind) {
+void read_inductance(const ConfigNode& node, CoilImpedanceParameters& p,
+                     ParameterBindings<CoilImpedanceParameters>& bind) {
   node.declare(
       {"quantity", "lambda_l", "lambda_x", "lambda_T", "lambda_0", "reference_temperature"});
   InductanceLaw& law = p.inductance;
@@ -14,48 +14,54 @@ void read_inductance(const ConfigNode& node, P& p, ParameterBindings<P>& bind) {
   const char* value = law.is_measure ? "1" : "H";
   const char* per_kelvin = law.is_measure ? "1/K" : "H/K";
   bind.quantity(node, "lambda_l", per_length, ValueCheck::positive(), p,
-                [](P& v) -> double& { return v.inductance.lambda_l; });
+                [](CoilImpedanceParameters& v) -> double& { return v.inductance.lambda_l; });
   bind.quantity(node, "lambda_x", "m", ValueCheck::positive(), p,
-                [](P& v) -> double& { return v.inductance.lambda_x; });
+                [](CoilImpedanceParameters& v) -> double& { return v.inductance.lambda_x; });
   bind.quantity(node, "lambda_0", value, {}, p,
-                [](P& v) -> double& { return v.inductance.lambda_0; });
+                [](CoilImpedanceParameters& v) -> double& { return v.inductance.lambda_0; });
   bind.quantity_or(node, "lambda_T", per_kelvin, 0.0, {}, p,
-                   [](P& v) -> double& { return v.inductance.lambda_T; });
+                   [](CoilImpedanceParameters& v) -> double& { return v.inductance.lambda_T; });
   if (law.lambda_T != 0.0) {
-    bind.quantity(node, "reference_temperature", "K", ValueCheck::positive(), p,
-                  [](P& v) -> double& { return v.inductance.reference_temperature; });
+    bind.quantity(
+        node, "reference_temperature", "K", ValueCheck::positive(), p,
+        [](CoilImpedanceParameters& v) -> double& { return v.inductance.reference_temperature; });
   }
 }
 
-void read_resistance(const ConfigNode& node, P& p, ParameterBindings<P>& bind) {
+void read_resistance(const ConfigNode& node, CoilImpedanceParameters& p,
+                     ParameterBindings<CoilImpedanceParameters>& bind) {
   if (node.is_scalar()) {
-    p.resistance_form = P::ResistanceForm::constant;
+    p.resistance_form = CoilImpedanceParameters::ResistanceForm::constant;
     p.resistance = {0.0, 0.0, 0.0, 273.15};
     bind.as_quantity(node, "ohm", ValueCheck::positive(), p,
-                     [](P& v) -> double& { return v.resistance.rho_0; });
+                     [](CoilImpedanceParameters& v) -> double& { return v.resistance.rho_0; });
     return;
   }
   node.declare({"form", "rho_x", "rho_T", "rho_0", "reference_temperature", "resistance",
                 "temperature_coefficient", "strain_coefficient"});
   const std::string form = node.choice("form", {"linear", "thermal"});
   if (form == "thermal") {
-    p.resistance_form = P::ResistanceForm::thermal;
+    p.resistance_form = CoilImpedanceParameters::ResistanceForm::thermal;
     bind.quantity(node, "resistance", "ohm", ValueCheck::positive(), p,
-                  bind.member(&P::thermal_resistance));
+                  bind.member(&CoilImpedanceParameters::thermal_resistance));
     bind.quantity(node, "temperature_coefficient", "1/K", {}, p,
-                  bind.member(&P::temperature_coefficient));
+                  bind.member(&CoilImpedanceParameters::temperature_coefficient));
     bind.quantity(node, "reference_temperature", "K", ValueCheck::positive(), p,
-                  bind.member(&P::thermal_reference));
+                  bind.member(&CoilImpedanceParameters::thermal_reference));
     bind.quantity_or(node, "strain_coefficient", "ohm/m", 0.0, {}, p,
-                     bind.member(&P::strain_coefficient));
+                     bind.member(&CoilImpedanceParameters::strain_coefficient));
     return;
   }
-  p.resistance_form = P::ResistanceForm::linear;
-  bind.quantity(node, "rho_x", "ohm/m", {}, p, [](P& v) -> double& { return v.resistance.rho_x; });
-  bind.quantity(node, "rho_T", "ohm/K", {}, p, [](P& v) -> double& { return v.resistance.rho_T; });
-  bind.quantity(node, "rho_0", "ohm", {}, p, [](P& v) -> double& { return v.resistance.rho_0; });
-  bind.quantity(node, "reference_temperature", "K", ValueCheck::positive(), p,
-                [](P& v) -> double& { return v.resistance.reference_temperature; });
+  p.resistance_form = CoilImpedanceParameters::ResistanceForm::linear;
+  bind.quantity(node, "rho_x", "ohm/m", {}, p,
+                [](CoilImpedanceParameters& v) -> double& { return v.resistance.rho_x; });
+  bind.quantity(node, "rho_T", "ohm/K", {}, p,
+                [](CoilImpedanceParameters& v) -> double& { return v.resistance.rho_T; });
+  bind.quantity(node, "rho_0", "ohm", {}, p,
+                [](CoilImpedanceParameters& v) -> double& { return v.resistance.rho_0; });
+  bind.quantity(
+      node, "reference_temperature", "K", ValueCheck::positive(), p,
+      [](CoilImpedanceParameters& v) -> double& { return v.resistance.reference_temperature; });
 }
 }  // namespace
 
@@ -81,8 +87,8 @@ CoilImpedance::CoilImpedance(std::string group, CoilImpedanceParameters defaults
 std::unique_ptr<CoilImpedance> CoilImpedance::from_config(const std::string& group,
                                                           const ConfigNode& inductance,
                                                           const ConfigNode& resistance) {
-  P p;
-  ParameterBindings<P> bind;
+  CoilImpedanceParameters p;
+  ParameterBindings<CoilImpedanceParameters> bind;
   read_resistance(resistance, p, bind);
   read_inductance(inductance, p, bind);
   return std::make_unique<CoilImpedance>(group, p, std::move(bind));
@@ -111,7 +117,7 @@ std::vector<ParameterDeclaration> CoilImpedance::parameters() const {
 }
 
 std::unique_ptr<RunState> CoilImpedance::create_run_state(const RunSetup& setup) const {
-  const P p = bindings_.assign(defaults_, setup.parameters);
+  const CoilImpedanceParameters p = bindings_.assign(defaults_, setup.parameters);
   auto run = std::make_unique<Run>();
   run->inductance = p.inductance;
   run->resistance = p.resistance_law();
@@ -119,7 +125,7 @@ std::unique_ptr<RunState> CoilImpedance::create_run_state(const RunSetup& setup)
 }
 
 std::string CoilImpedance::check_parameters(const RunSetup& setup) const {
-  const P p = bindings_.assign(defaults_, setup.parameters);
+  const CoilImpedanceParameters p = bindings_.assign(defaults_, setup.parameters);
   if (!needs_temperature() && (p.inductance.lambda_T != 0.0 || p.resistance_law().rho_T != 0.0)) {
     return "the coil was built without a temperature input; a run cannot make it "
            "temperature-dependent (give the dependence in the scenario)";

@@ -11,9 +11,8 @@ namespace tcpmsim {
 
 namespace {
 constexpr int kFitLengths = 25;
-using P = CoilSpringInductanceParameters;
 
-bool same(const P& a, const P& b) {
+bool same(const CoilSpringInductanceParameters& a, const CoilSpringInductanceParameters& b) {
   return std::tie(a.windings, a.coil_radius, a.wire_diameter, a.rest_length, a.stiffness,
                   a.shortest_length, a.longest_length, a.preload_length) ==
          std::tie(b.windings, b.coil_radius, b.wire_diameter, b.rest_length, b.stiffness,
@@ -21,7 +20,7 @@ bool same(const P& a, const P& b) {
 }
 }  // namespace
 
-CoilGeometryProblem coil_geometry_problem(const P& p) {
+CoilGeometryProblem coil_geometry_problem(const CoilSpringInductanceParameters& p) {
   if (!(p.coil_radius > 0.5 * p.wire_diameter)) {
     return {"coil_radius", number_text(p.coil_radius) +
                                " m is not larger than half the wire "
@@ -92,18 +91,20 @@ std::unique_ptr<CoilSpringInductance> CoilSpringInductance::from_config(
     const std::string& group, const ConfigNode& node, const CoilSpringParameters& chain,
     double initial_length, const std::string& chain_group) {
   node.declare({"coil_radius", "wire_diameter", "operating_range", "preload_length"});
-  P p;
-  ParameterBindings<P> bind;
+  CoilSpringInductanceParameters p;
+  ParameterBindings<CoilSpringInductanceParameters> bind;
   p.windings = chain.windings;
   p.rest_length = chain.rest_length;
   p.stiffness = chain.stiffness;
-  bind.quantity(node, "coil_radius", "m", ValueCheck::positive(), p, bind.member(&P::coil_radius));
+  bind.quantity(node, "coil_radius", "m", ValueCheck::positive(), p,
+                bind.member(&CoilSpringInductanceParameters::coil_radius));
   bind.quantity(node, "wire_diameter", "m", ValueCheck::positive(), p,
-                bind.member(&P::wire_diameter));
+                bind.member(&CoilSpringInductanceParameters::wire_diameter));
   bind.interval(node, "operating_range", "m", ValueCheck::positive(), p,
-                bind.member(&P::shortest_length), bind.member(&P::longest_length));
+                bind.member(&CoilSpringInductanceParameters::shortest_length),
+                bind.member(&CoilSpringInductanceParameters::longest_length));
   bind.quantity_or(node, "preload_length", "m", initial_length, ValueCheck::positive(), p,
-                   bind.member(&P::preload_length));
+                   bind.member(&CoilSpringInductanceParameters::preload_length));
   if (const CoilGeometryProblem found = coil_geometry_problem(p); !found.key.empty())
     node.at(found.key).fail(found.problem);
   return std::make_unique<CoilSpringInductance>(
@@ -130,8 +131,8 @@ std::vector<ParameterDeclaration> CoilSpringInductance::parameters() const {
   return bindings_.declarations(defaults());
 }
 
-P CoilSpringInductance::run_parameters(const RunSetup& setup) const {
-  P p = bindings_.assign(defaults(), setup.parameters);
+CoilSpringInductanceParameters CoilSpringInductance::run_parameters(const RunSetup& setup) const {
+  CoilSpringInductanceParameters p = bindings_.assign(defaults(), setup.parameters);
   p.rest_length = setup.context.parameter(rest_length_path_);
   p.stiffness = setup.context.parameter(stiffness_path_);
   return p;
@@ -143,7 +144,7 @@ std::string CoilSpringInductance::check_parameters(const RunSetup& setup) const 
 }
 
 std::unique_ptr<RunState> CoilSpringInductance::create_run_state(const RunSetup& setup) const {
-  const P p = run_parameters(setup);
+  const CoilSpringInductanceParameters p = run_parameters(setup);
   auto run = std::make_unique<Run>();
   run->model = same(p, defaults()) ? built_ : std::make_shared<const SpringInductanceModel>(p);
   run->positions.assign(static_cast<std::size_t>(p.windings), 0.0);

@@ -4,7 +4,6 @@ namespace tcpmsim {
 
 namespace {
 constexpr double kStefanBoltzmann = 5.670374419e-8;  // W m^-2 K^-4 (CODATA 2018, exact)
-using P = ThermalNodeParameters;
 }  // namespace
 
 ThermalNode::ThermalNode(std::string group, ThermalNodeParameters defaults,
@@ -19,24 +18,25 @@ std::unique_ptr<ThermalNode> ThermalNode::from_config(const std::string& group,
                                                       const SignalContext& signals) {
   node.declare({"heat_capacity", "conductance", "ambient_temperature", "heating_efficiency",
                 "radiation", "initial_temperature", "energy_accounting"});
-  P p;
-  ParameterBindings<P> bind;
+  ThermalNodeParameters p;
+  ParameterBindings<ThermalNodeParameters> bind;
   bind.quantity(node, "heat_capacity", "J/K", ValueCheck::positive(), p,
-                bind.member(&P::heat_capacity));
+                bind.member(&ThermalNodeParameters::heat_capacity));
   bind.quantity(node, "conductance", "W/K", ValueCheck::non_negative(), p,
-                bind.member(&P::conductance));
+                bind.member(&ThermalNodeParameters::conductance));
   bind.quantity_or(node, "heating_efficiency", "1", 1.0, ValueCheck::fraction(), p,
-                   bind.member(&P::heating_efficiency));
+                   bind.member(&ThermalNodeParameters::heating_efficiency));
   if (auto radiation = node.find("radiation")) {
     bind.quantity(*radiation, "emissivity", "1", ValueCheck::fraction(), p,
-                  bind.member(&P::emissivity));
+                  bind.member(&ThermalNodeParameters::emissivity));
     bind.quantity(*radiation, "area", "m^2", ValueCheck::positive(), p,
-                  bind.member(&P::radiating_area));
+                  bind.member(&ThermalNodeParameters::radiating_area));
   }
   if (auto initial = node.find("initial_temperature")) {
     p.initial_temperature = 0.0;
-    bind.as_quantity(*initial, "K", ValueCheck::positive(), p,
-                     [](P& values) -> double& { return *values.initial_temperature; });
+    bind.as_quantity(
+        *initial, "K", ValueCheck::positive(), p,
+        [](ThermalNodeParameters& values) -> double& { return *values.initial_temperature; });
   }
   p.energy_accounting = node.boolean_or("energy_accounting", false);
   const ConfigNode ambient_node = node.at("ambient_temperature");

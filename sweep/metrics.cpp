@@ -8,11 +8,11 @@
 #include "analysis/statistics.h"
 #include "analysis/task_runs.h"
 #include "signals/control_task_signals.h"
+#include "sim/not_a_number.h"
 
 namespace tcpmsim::sweep {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Samples within this of a window's end belong to it (output times carry rounding).
 constexpr double kTimeSlack = 1e-9;
 

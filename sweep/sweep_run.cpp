@@ -5,12 +5,11 @@
 
 #include "kinds/standard_kinds.h"
 #include "sim/memory_record.h"
+#include "sim/not_a_number.h"
 #include "sim/run.h"
 
 namespace tcpmsim::sweep {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 bool has_parameter(const Scenario& scenario, const std::string& path) {
   return scenario.system->parameter_index(path).has_value();

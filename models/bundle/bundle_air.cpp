@@ -8,7 +8,6 @@
 namespace tcpmsim {
 
 namespace {
-using P = BundleAirParameters;
 
 // What is wrong with a fan speed over [0, duration], or "".
 std::string fan_speed_problem(const Signal& speed, double duration) {
@@ -33,18 +32,19 @@ BundleAir::BundleAir(std::string group, BundleAirParameters defaults,
 std::unique_ptr<BundleAir> BundleAir::from_config(const std::string& group, const ConfigNode& node,
                                                   const SignalContext& signals) {
   node.declare({"shielding", "contact_conductance", "fan"});
-  P p;
-  ParameterBindings<P> bind;
-  bind.quantity(node, "shielding", "1", ValueCheck::fraction(), p, bind.member(&P::shielding));
+  BundleAirParameters p;
+  ParameterBindings<BundleAirParameters> bind;
+  bind.quantity(node, "shielding", "1", ValueCheck::fraction(), p,
+                bind.member(&BundleAirParameters::shielding));
   const bool contact = node.has("contact_conductance");
   bind.quantity_or(node, "contact_conductance", "W/K", 0.0, ValueCheck::non_negative(), p,
-                   bind.member(&P::contact_conductance));
+                   bind.member(&BundleAirParameters::contact_conductance));
   std::unique_ptr<Signal> speed;
   Fan kind = Fan::none;
   if (const auto fan = node.find("fan")) {
     fan->declare({"conductance", "speed"});
     bind.quantity(*fan, "conductance", "W/K", ValueCheck::non_negative(), p,
-                  bind.member(&P::fan_conductance));
+                  bind.member(&BundleAirParameters::fan_conductance));
     const ConfigNode speed_node = fan->at("speed");
     kind = speed_node.is_word("controller") ? Fan::commanded : Fan::prescribed;
     if (kind == Fan::prescribed) {

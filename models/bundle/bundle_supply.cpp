@@ -3,7 +3,6 @@
 namespace tcpmsim {
 
 namespace {
-using P = BundleSupplyParameters;
 constexpr const char* kSourceUnit[] = {"V", "A", "W"};  // by SupplyMode
 constexpr const char* kSourceKey[] = {"voltage", "current", "power"};
 
@@ -43,10 +42,10 @@ std::unique_ptr<BundleSupply> BundleSupply::from_config(const std::string& group
   auto source = read_signal(source_node, kSourceUnit[static_cast<int>(mode)], signals);
   if (const std::string problem = source_problem(mode, *source, signals.duration); !problem.empty())
     source_node.fail(problem);
-  P p;
-  ParameterBindings<P> bind;
+  BundleSupplyParameters p;
+  ParameterBindings<BundleSupplyParameters> bind;
   bind.quantity_or(node, "series_resistance", "ohm", 0.0, ValueCheck::non_negative(), p,
-                   bind.member(&P::series_resistance));
+                   bind.member(&BundleSupplyParameters::series_resistance));
   const bool accounting = node.boolean_or("energy_accounting", false);
   return std::make_unique<BundleSupply>(group, wiring, mode, p, std::move(bind), std::move(source),
                                         signals.duration, accounting);
