@@ -1,6 +1,7 @@
 #include "sim/block_preconditioner.h"
 
-#include <sunlinsol/sunlinsol_klu.h>
+#include "sim/klu_solver.h"
+
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include <algorithm>
@@ -31,11 +32,8 @@ BlockPreconditioner::BlockPreconditioner(const SparsityPattern& whole,
     whole_start += static_cast<sunindextype>(rows.size());
   }
   column_start[blocks.size] = entry;
-  solver_ = SUNLinSol_KLU(like, matrix_, sundials);
+  solver_ = make_klu_solver(like, matrix_, sundials);
   if (!solver_) throw std::runtime_error("could not create the preconditioner's KLU solver");
-  // AMD on A + A^T, as for the whole matrix (the blocks are structurally near-symmetric).
-  if (SUNLinSol_KLUSetOrdering(solver_, 0) != SUNLS_SUCCESS || SUNLinSolInitialize(solver_) != 0)
-    throw std::runtime_error("could not initialise the preconditioner's KLU solver");
 }
 
 BlockPreconditioner::~BlockPreconditioner() {
@@ -48,29 +46,11 @@ int BlockPreconditioner::setup(SUNMatrix jacobian, double gamma) {
   double* data = SUNSparseMatrix_Data(matrix_);
   for (std::size_t k = 0; k < source_entry_.size(); ++k)
     data[k] = (diagonal_[k] ? 1.0 : 0.0) - gamma * source[source_entry_[k]];
-  // KLU refactors in the pivot order it has; a zero pivot in that order gets a fresh analysis.
-  if (SUNLinSolSetup(solver_, matrix_) == SUNLS_SUCCESS) return 0;
-  SUNLinSolInitialize(solver_);
   return SUNLinSolSetup(solver_, matrix_) == SUNLS_SUCCESS ? 0 : 1;
 }
 
 int BlockPreconditioner::solve(N_Vector r, N_Vector z) {
   return SUNLinSolSolve(solver_, matrix_, z, r, 0.0) == SUNLS_SUCCESS ? 0 : 1;
-}
-
-void multiply_sparse(SUNMatrix matrix, N_Vector v, N_Vector out) {
-  const sunindextype columns = SUNSparseMatrix_Columns(matrix);
-  const sunindextype* column_start = SUNSparseMatrix_IndexPointers(matrix);
-  const sunindextype* row_index = SUNSparseMatrix_IndexValues(matrix);
-  const double* data = SUNSparseMatrix_Data(matrix);
-  const double* x = N_VGetArrayPointer(v);
-  double* y = N_VGetArrayPointer(out);
-  std::fill(y, y + SUNSparseMatrix_Rows(matrix), 0.0);
-  for (sunindextype column = 0; column < columns; ++column) {
-    const double value = x[column];
-    for (sunindextype k = column_start[column]; k < column_start[column + 1]; ++k)
-      y[row_index[k]] += data[k] * value;
-  }
 }
 
 }  // namespace tcpmsim

@@ -39,7 +39,4 @@ class BlockPreconditioner {
   std::vector<char> diagonal_;              // per entry of P: on the diagonal
 };
 
-// out = A v for a CSC sparse matrix A.
-void multiply_sparse(SUNMatrix matrix, N_Vector v, N_Vector out);
-
 }  // namespace tcpmsim

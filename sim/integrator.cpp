@@ -2,6 +2,7 @@
 
 #include "sim/block_preconditioner.h"
 #include "sim/forward_sensitivity.h"
+#include "sim/klu_solver.h"
 #include "sim/serial_vector_kernels.h"
 #include "sim/time_grid.h"
 #include "sim/value_check.h"
@@ -11,7 +12,6 @@
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_band.h>
 #include <sunlinsol/sunlinsol_dense.h>
-#include <sunlinsol/sunlinsol_klu.h>
 #include <sunlinsol/sunlinsol_spgmr.h>
 #include <sunmatrix/sunmatrix_band.h>
 #include <sunmatrix/sunmatrix_dense.h>
@@ -416,24 +416,6 @@ std::vector<std::vector<int>> colour_columns(detail::CvodeHandles& cv, std::vect
   return groups;
 }
 
-// The pattern is fixed for the whole run, so KLU's symbolic analysis (the fill-reducing
-// ordering) is kept across CVodeReInit, which would otherwise redo it at every breakpoint. KLU
-// then refactors with the pivot order it has and, when its condition estimate says that order
-// went bad, factors afresh by itself.
-int initialize_keeping_klu_analysis(SUNLinearSolver solver) {
-  if (SUNLinSol_KLUGetSymbolic(solver) != nullptr) return SUNLS_SUCCESS;
-  return SUNLinSolInitialize_KLU(solver);
-}
-
-// A refactorisation that fails (a zero pivot in the kept order) gets a fresh analysis and
-// factorisation with new pivots before CVODE hears of it, instead of failing at every retry.
-int setup_repivoting_on_failure(SUNLinearSolver solver, SUNMatrix matrix) {
-  const int flag = SUNLinSolSetup_KLU(solver, matrix);
-  if (flag == SUNLS_SUCCESS) return flag;
-  SUNLinSolInitialize_KLU(solver);
-  return SUNLinSolSetup_KLU(solver, matrix);
-}
-
 // GMRES's preconditioner set-up: a Jacobian when CVODE asks for a fresh one (jok false), with
 // the same reuse and carrying as for a direct solver, then P = I - gamma J_B factored.
 int preconditioner_setup(realtype t, N_Vector y, N_Vector fy, booleantype jacobian_ok,
@@ -460,8 +442,7 @@ int preconditioner_solve(realtype, N_Vector, N_Vector, N_Vector r, N_Vector z, r
 // (modified Newton), at a sparse product per iteration instead of a right-hand side.
 int jacobian_times(N_Vector v, N_Vector product, realtype, N_Vector, N_Vector, void* user_data,
                    N_Vector) {
-  multiply_sparse(cvode_of(user_data).matrix, v, product);
-  return 0;
+  return SUNMatMatvec(cvode_of(user_data).matrix, v, product);
 }
 
 void capture_error(int, const char* module, const char* function, char* message, void* user_data) {
@@ -490,6 +471,15 @@ double first_step_after_restart(void* memory) {
 }
 
 }  // namespace
+
+const std::vector<std::string>& linear_solver_names() {
+  static const std::vector<std::string> names{"dense", "band", "klu", "gmres"};
+  return names;
+}
+
+const std::string& linear_solver_name(LinearSolverKind kind) {
+  return linear_solver_names().at(static_cast<std::size_t>(kind));
+}
 
 Integrator::Integrator(const System& system, Context& context, SolverSettings settings)
     : cvode_(std::make_unique<detail::CvodeHandles>()),
@@ -550,14 +540,7 @@ void Integrator::attach_linear_solver() {
     case LinearSolverKind::klu:
       cv.matrix = SUNSparseMatrix(size, size, cv.pattern.non_zeros(), CSC_MAT, cv.sundials);
       write_structure(cv.pattern, cv.matrix);
-      cv.linear_solver = SUNLinSol_KLU(cv.state, cv.matrix, cv.sundials);
-      if (cv.linear_solver) {
-        // AMD on A + A^T: the patterns here are (nearly) structurally symmetric, and for a
-        // packed bundle's thermal network it fills a fifth less than KLU's default COLAMD.
-        check(SUNLinSol_KLUSetOrdering(cv.linear_solver, 0), "SUNLinSol_KLUSetOrdering");
-        cv.linear_solver->ops->initialize = initialize_keeping_klu_analysis;
-        cv.linear_solver->ops->setup = setup_repivoting_on_failure;
-      }
+      cv.linear_solver = make_klu_solver(cv.state, cv.matrix, cv.sundials);
       break;
     case LinearSolverKind::gmres:
       attach_krylov_solver();

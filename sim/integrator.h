@@ -22,6 +22,9 @@ struct CvodeHandles;
 // stays linear in the members when their coupling (a bundle's contact conduction) makes the
 // whole matrix's LU fill grow faster.
 enum class LinearSolverKind { dense, band, klu, gmres };
+// The names configs give them (solver.linear_solver), in LinearSolverKind's order.
+const std::vector<std::string>& linear_solver_names();
+const std::string& linear_solver_name(LinearSolverKind kind);
 
 // BDF with Newton iteration for stiff systems (the muscles: thermal and mechanical time
 // constants seconds apart); Adams-Moulton with fixed-point iteration for non-stiff oscillatory

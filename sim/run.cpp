@@ -14,20 +14,6 @@
 
 namespace tcpmsim {
 
-const char* linear_solver_name(LinearSolverKind kind) {
-  switch (kind) {
-    case LinearSolverKind::band:
-      return "band";
-    case LinearSolverKind::klu:
-      return "klu";
-    case LinearSolverKind::gmres:
-      return "gmres";
-    case LinearSolverKind::dense:
-      break;
-  }
-  return "dense";
-}
-
 RecordSize estimate_record_size(const Scenario& scenario) {
   const ScenarioSettings& settings = scenario.settings;
   RecordSize size;

@@ -37,8 +37,6 @@ RunOutcome run_scenario(const Scenario& scenario, const std::string& output_path
 RunOutcome run_scenario(const Scenario& scenario, Context& context, const std::string& output_path,
                         const Integrator::Progress& progress = {});
 
-const char* linear_solver_name(LinearSolverKind kind);
-
 // What a scenario's record says about it (name, file, resolved config, seed, solver, output).
 RecordMetadata record_metadata(const Scenario& scenario);
 

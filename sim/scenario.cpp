@@ -117,13 +117,11 @@ SolverSettings read_solver(const ConfigNode& root, const System& system) {
                         : IntegrationMethod::bdf;
   settings.relative_tolerance =
       solver->number_or("rtol", settings.relative_tolerance, ValueCheck::between(1e-14, 0.1));
+  const auto& names = linear_solver_names();
   const std::string kind = solver->choice_or(
-      "linear_solver", {"dense", "band", "klu", "gmres"},
-      default_linear_solver(system, settings.method) == LinearSolverKind::klu ? "klu" : "dense");
-  settings.linear_solver = kind == "band"    ? LinearSolverKind::band
-                           : kind == "klu"   ? LinearSolverKind::klu
-                           : kind == "gmres" ? LinearSolverKind::gmres
-                                             : LinearSolverKind::dense;
+      "linear_solver", names, linear_solver_name(default_linear_solver(system, settings.method)));
+  settings.linear_solver =
+      static_cast<LinearSolverKind>(std::find(names.begin(), names.end(), kind) - names.begin());
   settings.restart = read_restart(*solver, settings.linear_solver) == "warm" ? RestartKind::warm
                                                                              : RestartKind::cold;
   settings.max_step = solver->quantity_or("max_step", "s", 0.0, ValueCheck::non_negative());
