@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "models/effects/free_convection.h"
 #include "tests/support/test_support.h"
 
 using namespace tcpmsim;
@@ -138,4 +139,140 @@ TEST_CASE("A nonlinear stiffness adds k_n w softplus((x - x_k)/w) to the muscle'
   // The linearisation about the follower errs by F'' (v tau_f)^2 / 2 < k_n / (4 w) (3e-8 m)^2
   // / 2, about 1e-12 N: what remains is the solver's.
   CHECK(worst <= allowed(1e-8, largest));
+}
+
+TEST_CASE("A heating lag delays a share of the power by a first-order lag") {
+  // Power step P at t_s into one node: C dT/dt = (1 - a) P + a P_l - hA (T - T_amb) with
+  // tau dP_l/dt = P - P_l. With lambda = hA / C and mu = 1 / tau, the rise is
+  //   T - T_amb = P/hA [1 - e^(-lambda s)] - a P/C [e^(-mu s) - e^(-lambda s)] / (lambda - mu).
+  const double share = 0.6, tau = 3.0, power = 1.5;
+  const double lambda = kConductance / kCapacity, mu = 1.0 / tau;
+  auto rise = [&](double s) {
+    if (s <= 0) return 0.0;
+    return power / kConductance * (1 - std::exp(-lambda * s)) -
+           share * power / kCapacity * (std::exp(-mu * s) - std::exp(-lambda * s)) / (lambda - mu);
+  };
+  const Trace trace = simulate(physical_muscle_yaml(),
+                               {kPowerStep,
+                                "muscle.effects=[{type: heating_lag, name: wire, share: 0.6, "
+                                "time_constant: 3 s}]"});
+  double worst = 0.0;
+  for (std::size_t i = 0; i < trace.time.size(); ++i)
+    worst = std::max(
+        worst, std::abs(trace["muscle/temperature"][i] - kAmbient - rise(trace.time[i] - 10.0)));
+  INFO("worst error " << worst << " K");
+  CHECK(worst <= allowed(1e-8, 30.0) + 50.0 * 1e-6);
+}
+
+TEST_CASE("An effect at zero size leaves the muscle as it was (discover's nested start)") {
+  // The forces of the muscle under a deflection triangle and a power step: every effect that
+  // discover's candidates start at zero size carries exactly nothing there. Its extra states
+  // change the solver's steps, so the forces agree to the solver's tolerance, not bit for bit.
+  auto overrides = triangle(40.0, 2);
+  overrides.push_back("drive.power={type: steps, initial: 0 W, times: [20 s], values: [1.5 W]}");
+  const Trace bare = simulate(physical_muscle_yaml(), overrides);
+  for (const std::string effect :
+       {"{type: maxwell_branch, name: b, stiffness: 0 N/m, time_constant: 20 s}",
+        "{type: hysteresis, name: h, stiffness: 0 N/m, radius: 1 mm}",
+        "{type: free_convection, name: c, conductance: 0 W/K, reference_difference: 50 K, "
+        "exponent: 1.4}",
+        "{type: nonlinear_stiffness, name: n, stiffness: 0 N/m, knee_deflection: 24 mm, "
+        "knee_width: 1 mm}",
+        "{type: thermal_softening, name: s, reference_stiffness: 0 N/m, "
+        "temperature_coefficient: 0.01 1/K, reference_temperature: 20 degC}",
+        "{type: heating_lag, name: l, share: 0, time_constant: 3 s}",
+        "{type: ratchet, name: r, rate: 0 N/(K*s), threshold: 25 degC}",
+        "{type: heating_convection, name: f, conductance: 0 W/K, reference_power: 1.5 W}"}) {
+    auto with = overrides;
+    with.push_back("muscle.effects=[" + effect + "]");
+    const Trace trace = simulate(physical_muscle_yaml(), with);
+    INFO(effect);
+    CHECK(max_abs_difference(trace["muscle/force"], bare["muscle/force"]) <= allowed(1e-8, 0.3));
+    CHECK(max_abs_difference(trace["muscle/temperature"], bare["muscle/temperature"]) <=
+          allowed(1e-8, 30.0));
+  }
+}
+
+TEST_CASE("Hysteresis given by its radius is a stop operator: force linear in its weight") {
+  // dz/dt = k_h v - |v| z / r: on a rising branch z = k_h r - (k_h r - z0) exp(-dx / r), and
+  // doubling k_h doubles z (the Prandtl-Ishlinskii operator is linear in its weights).
+  auto run = [&](const std::string& stiffness) {
+    auto overrides = triangle(40.0, 2);
+    overrides.push_back("muscle.effects=[{type: hysteresis, name: play, stiffness: " + stiffness +
+                        ", radius: 1.5 mm, follower_time: 1 ms}]");
+    return simulate(physical_muscle_yaml(), overrides);
+  };
+  const Trace one = run("4 N/m"), two = run("8 N/m");
+  const auto& z1 = one["muscle/play/force"];
+  const auto& z2 = two["muscle/play/force"];
+  double worst = 0.0, largest = 0.0;
+  for (std::size_t i = 0; i < z1.size(); ++i) {
+    worst = std::max(worst, std::abs(z2[i] - 2.0 * z1[i]));
+    largest = std::max(largest, std::abs(z1[i]));
+  }
+  CHECK(largest == Approx(4.0 * 1.5e-3).epsilon(0.02));  // saturates at k_h r
+  CHECK(worst <= allowed(1e-8, 4 * largest));            // z2's error and twice z1's
+  // The same element given by F_h = k_h r is Dahl's, to the solver's tolerance.
+  auto dahl = triangle(40.0, 2);
+  dahl.push_back(
+      "muscle.effects=[{type: hysteresis, name: play, stiffness: 4 N/m, force: 6 mN, "
+      "follower_time: 1 ms}]");
+  CHECK(max_abs_difference(simulate(physical_muscle_yaml(), dahl)["muscle/play/force"], z1) <=
+        allowed(1e-8, largest));
+}
+
+TEST_CASE("Free convection with a free exponent loses G dT_ref (dT/dT_ref)^n") {
+  FreeConvectionParameters p;
+  p.conductance = 0.01;
+  p.reference_difference = 50.0;
+  p.exponent = 1.5;
+  CHECK(FreeConvection::heat_loss(p, 50.0) == Approx(0.5).epsilon(1e-15));
+  CHECK(FreeConvection::heat_loss(p, 25.0) == Approx(0.5 * std::pow(0.5, 1.5)).epsilon(1e-14));
+  CHECK(FreeConvection::heat_loss(p, -25.0) == -FreeConvection::heat_loss(p, 25.0));
+  p.exponent = 0.0;  // the laminar 5/4
+  CHECK(FreeConvection::heat_loss(p, 25.0) == Approx(0.5 * std::pow(0.5, 1.25)).epsilon(1e-14));
+  CHECK(config_error(physical_muscle_yaml(),
+                     {"muscle.effects=[{type: free_convection, conductance: 0.01 W/K, "
+                      "reference_difference: 50 K, exponent: 3}]"})
+            .find("exponent") != std::string::npos);
+}
+
+TEST_CASE("A ratchet loses force by g times the heat above its threshold, and never regains it") {
+  // dF_r/dt = -g max(0, T - T_th): under a power pulse F_r falls while T is above T_th and holds
+  // when the muscle cools; it equals -g times the integral of the excess over the recorded T.
+  const double rate = 2e-5, threshold = kAmbient + 20.0;
+  const Trace trace = simulate(
+      physical_muscle_yaml(),
+      {"drive.power={type: steps, initial: 0 W, times: [10 s, 50 s], values: [1.5 W, 0 W]}",
+       "scenario.duration=150 s", "output.rate=100 Hz",
+       "muscle.effects=[{type: ratchet, name: creep, rate: 2e-5 N/(K*s), threshold: 40 degC}]"});
+  const auto& t = trace.time;
+  const auto& temperature = trace["muscle/temperature"];
+  const auto& force = trace["muscle/creep/force"];
+  double integral = 0.0, worst = 0.0;
+  for (std::size_t i = 1; i < t.size(); ++i) {
+    const double a = std::max(0.0, temperature[i - 1] - threshold);
+    const double b = std::max(0.0, temperature[i] - threshold);
+    integral += 0.5 * (a + b) * (t[i] - t[i - 1]);
+    worst = std::max(worst, std::abs(force[i] + rate * integral));
+    // Never regained, to the solver's tolerance (its interpolation between steps).
+    CHECK(force[i] <= force[i - 1] + allowed(1e-8, std::abs(force[i])));
+  }
+  INFO("lost " << -force.back() << " N, worst error " << worst << " N");
+  CHECK(-force.back() > 1e-3);
+  // The trapezoid's error on the kinks where T crosses T_th, at 100 Hz, and the solver's.
+  CHECK(worst <= 1e-3 * -force.back());
+  // Cooled below the threshold: it holds.
+  CHECK(std::abs(force.back() - force[t.size() - 200]) <= allowed(1e-8, -force.back()));
+}
+
+TEST_CASE("A heating-driven convection raises hA by G_P P / P_ref while the heater runs") {
+  // The steady state of one node under power P: T - T_amb = P / (hA + G_P P / P_ref).
+  const Trace trace =
+      simulate(physical_muscle_yaml(),
+               {kPowerStep, "scenario.duration=400 s",
+                "muscle.effects=[{type: heating_convection, name: fan, conductance: 0.03 W/K, "
+                "reference_power: 3 W}]"});
+  CHECK(trace["muscle/temperature"].back() - kAmbient ==
+        Approx(1.5 / (kConductance + 0.03 * 1.5 / 3.0)).epsilon(1e-6));
 }

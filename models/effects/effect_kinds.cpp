@@ -1,9 +1,12 @@
 #include "models/effects/effect_kinds.h"
 
 #include "models/effects/free_convection.h"
+#include "models/effects/heating_convection.h"
+#include "models/effects/heating_lag.h"
 #include "models/effects/hysteresis.h"
 #include "models/effects/maxwell_branch.h"
 #include "models/effects/nonlinear_stiffness.h"
+#include "models/effects/ratchet.h"
 #include "models/effects/thermal_lag.h"
 #include "models/effects/thermal_softening.h"
 #include "models/muscle.h"
@@ -97,6 +100,39 @@ void attach_thermal_lag(const ConfigNode& section, const MuscleAttachment& muscl
   system.connect(muscle.muscle + ".heat_loss", muscle.group + ".heat_loss");
 }
 
+void attach_heating_lag(const ConfigNode& section, const MuscleAttachment& muscle,
+                        ScenarioBuilder& build) {
+  require_heat_terms(section, muscle, "a heating lag");
+  SystemBuilder& system = build.system();
+  auto& lag = system.add(HeatingLag::from_config(muscle.group, section));
+  system.share_input(muscle.muscle + ".power", lag, "power");
+  system.connect(muscle.muscle + ".heat_loss", muscle.group + ".heat_loss");
+}
+
+void attach_ratchet(const ConfigNode& section, const MuscleAttachment& muscle,
+                    ScenarioBuilder& build) {
+  if (!muscle.facts->thermal.reports_temperature) {
+    section.fail(
+        "a ratchet is driven by the muscle's temperature: use the physical thermal form, or give "
+        "the reduced form's thermal_force.force_per_kelvin");
+  }
+  SystemBuilder& system = build.system();
+  auto& ratchet = system.add(Ratchet::from_config(muscle.group, section));
+  system.connect(ratchet, "temperature", muscle.muscle + ".temperature");
+  connect_force_term(system, muscle);
+}
+
+void attach_heating_convection(const ConfigNode& section, const MuscleAttachment& muscle,
+                               ScenarioBuilder& build) {
+  require_heat_terms(section, muscle, "a heating-driven convection");
+  SystemBuilder& system = build.system();
+  auto& convection = system.add(HeatingConvection::from_config(muscle.group, section));
+  system.share_input(muscle.muscle + ".power", convection, "power");
+  system.connect(convection, "temperature", muscle.muscle + ".temperature");
+  system.connect(convection, "ambient_temperature", muscle.muscle + ".ambient_temperature");
+  system.connect(muscle.muscle + ".heat_loss", muscle.group + ".heat_loss");
+}
+
 }  // namespace
 
 void register_effect_kinds(KindRegistry& kinds) {
@@ -146,9 +182,16 @@ load: {type: deflection, deflection: 20 mm}
   kinds.add({kEffectCategory,
              "hysteresis",
              "rate-independent hysteresis in the force (Dahl): dz/dt = k_h (v - |v| z/F_h), "
-             "saturating at +-F_h, in parallel with the SLS",
+             "saturating at +-F_h, in parallel with the SLS; given by its radius r = F_h/k_h, a "
+             "stop operator weighted by k_h (several on a grid of radii: Prandtl-Ishlinskii)",
              {{example_muscle_scenario("  effects:\n    - {type: hysteresis, name: friction, "
                                        "stiffness: 20 mN/mm, force: 5 mN}\n",
+                                       ""),
+               "muscle.effects[0]"},
+              {example_muscle_scenario("  effects:\n    - {type: hysteresis, name: play_1, "
+                                       "stiffness: 2 mN/mm, radius: 0.5 mm}\n    - {type: "
+                                       "hysteresis, name: play_2, stiffness: 1 mN/mm, radius: "
+                                       "3 mm}\n",
                                        ""),
                "muscle.effects[0]"}},
              EffectBuilder(attach_hysteresis)});
@@ -171,6 +214,33 @@ load: {type: deflection, deflection: 20 mm}
                                        ""),
                "muscle.effects[0]"}},
              EffectBuilder(attach_thermal_lag)});
+  kinds.add({kEffectCategory,
+             "heating_lag",
+             "a share a of the heating power reaches the polymer through a first-order lag: "
+             "tau dP_l/dt = P - P_l, the polymer heated by (1 - a) P + a P_l",
+             {{example_muscle_scenario("  effects:\n    - {type: heating_lag, name: wire, "
+                                       "share: 0.5, time_constant: 2 s}\n",
+                                       ""),
+               "muscle.effects[0]"}},
+             EffectBuilder(attach_heating_lag)});
+  kinds.add({kEffectCategory,
+             "ratchet",
+             "an irreversible loss of force as the rest length creeps above a threshold "
+             "temperature: dF_r/dt = -g max(0, T - T_th), kept when the muscle cools",
+             {{example_muscle_scenario("  effects:\n    - {type: ratchet, name: creep, "
+                                       "rate: 2e-6 N/(K*s), threshold: 40 degC}\n",
+                                       ""),
+               "muscle.effects[0]"}},
+             EffectBuilder(attach_ratchet)});
+  kinds.add({kEffectCategory,
+             "heating_convection",
+             "a heat-transfer coefficient that rises with the heating input (a fan or heat "
+             "gun running with the heater): Q = G_P (P / P_ref) (T - T_amb)",
+             {{example_muscle_scenario("  effects:\n    - {type: heating_convection, name: fan, "
+                                       "conductance: 0.02 W/K, reference_power: 3 W}\n",
+                                       ""),
+               "muscle.effects[0]"}},
+             EffectBuilder(attach_heating_convection)});
 }
 
 }  // namespace tcpmsim

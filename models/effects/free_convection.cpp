@@ -11,18 +11,24 @@ FreeConvection::FreeConvection(std::string group, FreeConvectionParameters defau
 std::unique_ptr<FreeConvection> FreeConvection::from_config(const std::string& group,
                                                             const ConfigNode& node) {
   using P = FreeConvectionParameters;
-  node.declare({"type", "name", "conductance", "reference_difference"});
+  node.declare({"type", "name", "conductance", "reference_difference", "exponent"});
   P p;
   ParameterBindings<P> bind;
   bind.quantity(node, "conductance", "W/K", ValueCheck::non_negative(), p,
                 bind.member(&P::conductance));
   bind.quantity(node, "reference_difference", "K", ValueCheck::positive(), p,
                 bind.member(&P::reference_difference));
+  if (node.has("exponent"))
+    bind.quantity(node, "exponent", "1", ValueCheck::between(1.0, 2.0), p,
+                  bind.member(&P::exponent));
   return std::make_unique<FreeConvection>(group, p, std::move(bind));
 }
 
 double FreeConvection::heat_loss(const FreeConvectionParameters& p, double difference) {
   const double ratio = std::abs(difference) / p.reference_difference;
+  if (p.exponent > 0.0)
+    return std::copysign(p.conductance * p.reference_difference * std::pow(ratio, p.exponent),
+                         difference);
   return std::copysign(p.conductance * p.reference_difference * ratio * std::pow(ratio, 0.25),
                        difference);
 }

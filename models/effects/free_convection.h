@@ -15,10 +15,12 @@ namespace tcpmsim {
 // ambient the same law cools in reverse, Q = -G dT_ref (|dT| / dT_ref)^(5/4). Beside the node's
 // linear conductance it makes the steady temperature rise less than linearly with power: a
 // candidate for the cooling the thesis found mismatched at low power (physics.md section 3),
-// which the measured data must confirm or refute.
+// which the measured data must confirm or refute. The exponent n of (dT / dT_ref)^n may be given
+// (1 to 2; 5/4 laminar by default, 4/3 turbulent): discover's convection family frees it.
 struct FreeConvectionParameters {
   double conductance = 0.0;           // G [W/K] at the reference difference
   double reference_difference = 0.0;  // dT_ref [K]
+  double exponent = 0.0;              // n; 0: the laminar 5/4
 };
 
 class FreeConvection final : public ParametricComponent<FreeConvectionParameters> {
@@ -27,7 +29,7 @@ class FreeConvection final : public ParametricComponent<FreeConvectionParameters
   enum Output { kHeatLoss };
   FreeConvection(std::string group, FreeConvectionParameters defaults,
                  ParameterBindings<FreeConvectionParameters> bindings = {});
-  // Keys conductance, reference_difference.
+  // Keys conductance, reference_difference, exponent (default 5/4).
   static std::unique_ptr<FreeConvection> from_config(const std::string& group,
                                                      const ConfigNode& node);
   // Q for a temperature difference dT [W].

@@ -9,11 +9,18 @@ Hysteresis::Hysteresis(std::string group, HysteresisParameters defaults,
 std::unique_ptr<Hysteresis> Hysteresis::from_config(const std::string& group,
                                                     const ConfigNode& node) {
   using P = HysteresisParameters;
-  node.declare({"type", "name", "stiffness", "force", "follower_time"});
+  node.declare({"type", "name", "stiffness", "force", "radius", "follower_time"});
   P p;
   ParameterBindings<P> bind;
-  bind.quantity(node, "stiffness", "N/m", ValueCheck::positive(), p, bind.member(&P::stiffness));
-  bind.quantity(node, "force", "N", ValueCheck::positive(), p, bind.member(&P::force));
+  // A zero weight carries no force (discover's candidates start there).
+  bind.quantity(node, "stiffness", "N/m", ValueCheck::non_negative(), p,
+                bind.member(&P::stiffness));
+  if (node.has("force") && node.has("radius"))
+    node.at("radius").fail("give force or radius (= force / stiffness), not both");
+  if (node.has("radius"))
+    bind.quantity(node, "radius", "m", ValueCheck::positive(), p, bind.member(&P::radius));
+  else
+    bind.quantity(node, "force", "N", ValueCheck::positive(), p, bind.member(&P::force));
   bind.quantity_or(node, "follower_time", "s", 0.01, ValueCheck::positive(), p,
                    bind.member(&P::follower_time));
   return std::make_unique<Hysteresis>(group, p, std::move(bind));

@@ -14,7 +14,10 @@ std::unique_ptr<MaxwellBranch> MaxwellBranch::from_config(const std::string& gro
   node.declare({"type", "name", "stiffness", "damping", "time_constant"});
   P p;
   ParameterBindings<P> bind;
-  bind.quantity(node, "stiffness", "N/m", ValueCheck::positive(), p, bind.member(&P::stiffness));
+  // Zero stiffness is allowed: a branch that carries no force (discover's candidates start there,
+  // where the augmented model is the base model).
+  bind.quantity(node, "stiffness", "N/m", ValueCheck::non_negative(), p,
+                bind.member(&P::stiffness));
   if (node.has("damping") && node.has("time_constant"))
     node.at("time_constant")
         .fail("give damping or time_constant (= damping / stiffness), not both");
@@ -56,9 +59,7 @@ void MaxwellBranch::compute_observations(const Evaluation& evaluation) const {
 
 void MaxwellBranch::compute_derivatives(const Evaluation& evaluation, double* derivatives) const {
   const auto& p = run_parameters(evaluation);
-  set_derivative(derivatives, 0,
-                 sls::arm_rate(p.stiffness, p.dashpot(), input(evaluation, kDeflection),
-                               state(evaluation, 0)));
+  set_derivative(derivatives, 0, p.arm_rate(input(evaluation, kDeflection), state(evaluation, 0)));
 }
 
 }  // namespace tcpmsim

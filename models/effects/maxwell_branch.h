@@ -2,6 +2,7 @@
 
 #include <memory>
 
+#include "models/laws/sls.h"
 #include "sim/config/config_node.h"
 #include "sim/parametric_component.h"
 
@@ -25,6 +26,12 @@ struct MaxwellBranchParameters {
   double damping = 0.0;        // c_b [N s/m]; 0 when given by time_constant
   double time_constant = 0.0;  // tau_b [s]; 0 when given by damping
   double dashpot() const { return time_constant > 0.0 ? stiffness * time_constant : damping; }
+  // dy/dt = k_b (x - y) / c_b; a branch without stiffness (it carries no force) relaxes its arm
+  // at its time constant, or not at all when given by its damping.
+  double arm_rate(double deflection, double extension) const {
+    if (stiffness > 0.0) return sls::arm_rate(stiffness, dashpot(), deflection, extension);
+    return time_constant > 0.0 ? (deflection - extension) / time_constant : 0.0;
+  }
 };
 
 class MaxwellBranch final : public ParametricComponent<MaxwellBranchParameters> {
