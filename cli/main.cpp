@@ -41,6 +41,10 @@ enum ExitCode : int {
   kConfigError = 3,
   kOutputError = 4,
   kInternalError = 5,
+  // discover's verdicts other than a named effect (0): the base model fits to the noise floor,
+  // or it misses by more than the noise and no candidate explains it.
+  kVerdictNone = 10,
+  kVerdictUnexplained = 11,
 };
 
 struct Options {
@@ -314,21 +318,33 @@ int discover(const Options& options) {
   const auto written = tcpmsim::fit::write_discovery(
       directory, discovery,
       tcpmsim::file_provenance(options.invocation, {request.model_file}, request.overrides, units));
+  // The residuals before and after, and the diagnostic that gave the effect away. A picture
+  // that cannot be drawn is a warning: the analysis is written and stands without it.
+  bool drawn = false;
   if (options.plots) {
-    // The residuals before and after, and the diagnostic that gave the effect away.
     const std::string command =
         "'" + plot_tool() + "' discovery '" + directory + "' -o '" + directory + "'";
-    if (std::system(command.c_str()) != 0)
-      throw std::runtime_error("the plots of " + directory + " could not be drawn (" + command +
-                               "); --no-plots leaves them out");
+    drawn = std::system(command.c_str()) == 0;
+    if (!drawn)
+      std::cerr << "tcpmsim: warning: the plots of " << directory << " could not be drawn ("
+                << command << "); the analysis is complete without them (--no-plots leaves "
+                << "them out)\n";
   }
   if (!options.quiet) {
     std::cout << tcpmsim::fit::discovery_summary(discovery);
     for (const auto& file : written) std::cout << "wrote " << file << "\n";
-    if (options.plots)
+    if (drawn)
       std::cout << "wrote " << directory << "/residuals.png, " << directory << "/diagnostic.png\n";
   }
-  return kSuccess;
+  switch (discovery.kind) {
+    case tcpmsim::fit::VerdictKind::effect:
+      return kSuccess;
+    case tcpmsim::fit::VerdictKind::none:
+      return kVerdictNone;
+    case tcpmsim::fit::VerdictKind::unexplained:
+      break;
+  }
+  return kVerdictUnexplained;
 }
 
 // A synthetic measurement: a scenario read by a bench's instruments, written as a CSV file.
@@ -642,6 +658,18 @@ int main(int argc, char** argv) {
       ->delimiter(',');
   discover_command->add_option("--effects", request.effects, "Candidates (default: all eight)")
       ->delimiter(',');
+  discover_command
+      ->add_option("--noise", request.noise,
+                   "Noise floor of an output, e.g. force=2 mN (default: estimated from the data)")
+      ->delimiter(',');
+  discover_command
+      ->add_option("--floor-margin", request.floor_margin,
+                   "`none` needs each base validation RMSE within this fraction above its floor")
+      ->check(CLI::Range(0.0, 10.0));
+  discover_command
+      ->add_option("--min-gap-closed", request.min_gap_closed,
+                   "Share of the gap above the noise floor a named effect must close")
+      ->check(CLI::Range(0.0, 1.0));
   discover_command->add_option("--set", options.overrides, "Override a value of the model")
       ->type_name("KEY.PATH=VALUE");
   discover_command->add_option("--starts", request.starts, "Multistart points per fit")

@@ -10,6 +10,7 @@
 
 #include "identification/discovery_setup.h"
 #include "kinds/standard_kinds.h"
+#include "sim/not_a_number.h"
 #include "sim/parallel_runs.h"
 #include "sim/value_check.h"
 
@@ -84,7 +85,8 @@ Baseline baseline_of(FitSpec spec, FitResult result, const std::vector<double>& 
 }
 
 void score(CandidateOutcome& outcome, const Baseline& base, const std::vector<double>& noise,
-           const std::vector<std::vector<double>>& measured, const DiscoverRequest& request) {
+           const std::vector<std::vector<double>>& measured, const DiscoverSetup& setup) {
+  const DiscoverRequest& request = setup.request;
   const FitResult& result = outcome.result;
   outcome.bic = bic(result.identification, result.estimates.size());
   outcome.delta_bic = outcome.bic - base.bic;
@@ -101,28 +103,41 @@ void score(CandidateOutcome& outcome, const Baseline& base, const std::vector<do
   outcome.signature_match =
       change_norm * residual_norm > 0 ? projection / (change_norm * residual_norm) : 0.0;
   outcome.signature_z = change_norm > 0 ? projection / change_norm : 0.0;
+  // Where the base model misses by more than the noise, an effect that closes only a sliver of
+  // that gap is not what is missing, however significant its BIC: naming it would hide the rest.
+  outcome.gap_closed =
+      above_noise_gap_closed(base.result.validation.rmse, result.validation.rmse, setup.floor);
+  const bool above_noise =
+      combined_rmse(base.result.validation.rmse, setup.floor) > 1.0 + request.floor_margin;
   outcome.significant = outcome.delta_bic < -request.bic_threshold &&
                         outcome.gap_shrink > request.min_gap_shrink &&
-                        outcome.signature_z >= request.min_signature;
+                        outcome.signature_z >= request.min_signature &&
+                        (!above_noise || outcome.gap_closed >= request.min_gap_closed);
 }
 
 void rank(std::vector<CandidateOutcome>& candidates) {
   std::stable_sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) {
     const auto key = [](const CandidateOutcome& c) {
-      return std::make_pair(c.status == "fitted" ? (c.significant ? 0 : 1) : 2,
-                            c.status == "fitted" ? c.delta_bic : 0.0);
+      const int group = c.status != "fitted" ? 3 : c.superseded ? 2 : c.significant ? 0 : 1;
+      return std::make_pair(group, c.status == "fitted" ? c.delta_bic : 0.0);
     };
     return key(a) < key(b);
   });
 }
 
 // The candidate refit: the base parameters (at the base estimates, same bounds) and the
-// effect's, its multistart drawing the effect's only.
+// effect's, starting where the effect has zero size (the base model: its nested start), its
+// multistart drawing the effect's only. A refit that ends above its nested start went the wrong
+// way from a drawn start: it is fitted again from the nested start alone (continuation from
+// zero size, more iterations), and if that still ends above, it failed; it is never evidence
+// against the effect.
 CandidateOutcome fit_candidate(const DiscoverSetup& setup, const FitResult& base,
                                const std::vector<double>& noise, const EffectCandidate& candidate) {
   const auto started = std::chrono::steady_clock::now();
   CandidateOutcome outcome;
   outcome.name = candidate.name;
+  outcome.member = candidate.member;
+  outcome.order = candidate.order;
   outcome.description = candidate.description;
   outcome.signature = candidate.signature;
   try {
@@ -132,6 +147,8 @@ CandidateOutcome fit_candidate(const DiscoverSetup& setup, const FitResult& base
     problem.parameters.insert(problem.parameters.end(), candidate.parameters.begin(),
                               candidate.parameters.end());
     auto& settings = outcome.spec.settings;
+    settings.start = values_of(base);
+    settings.start.insert(settings.start.end(), candidate.nested.begin(), candidate.nested.end());
     settings.threads = 1;  // the candidates run in parallel
     settings.screened_from = base.estimates.size();
     settings.starts = std::min(settings.starts, 4);
@@ -141,7 +158,29 @@ CandidateOutcome fit_candidate(const DiscoverSetup& setup, const FitResult& base
     // far below the BIC's unit, at which the ranking is decided.
     settings.function_tolerance = 1e-6;
     outcome.result = fit_model(problem, settings);
-    outcome.status = "fitted";
+    outcome.nested_cost = outcome.result.start_cost;
+    const auto above_nested = [&](const FitResult& result) {
+      return result.cost > outcome.nested_cost * (1.0 + 1e-9);
+    };
+    if (above_nested(outcome.result)) {
+      FitSettings continuation = settings;
+      continuation.starts = 0;
+      continuation.max_iterations = 2 * settings.max_iterations;
+      FitResult again = fit_model(problem, continuation);
+      again.simulations += outcome.result.simulations;
+      again.iterations += outcome.result.iterations;
+      outcome.result = std::move(again);
+      outcome.retried = true;
+    }
+    if (above_nested(outcome.result)) {
+      outcome.status = "failed";
+      outcome.reason = "the refit ended above its nested start (cost " +
+                       number_text(outcome.result.cost, 8) + " against " +
+                       number_text(outcome.nested_cost, 8) +
+                       ", the base model's) also from zero size: a solver failure, not evidence";
+    } else {
+      outcome.status = "fitted";
+    }
   } catch (const std::exception& error) {
     outcome.status = "failed";
     outcome.reason = error.what();
@@ -151,7 +190,72 @@ CandidateOutcome fit_candidate(const DiscoverSetup& setup, const FitResult& base
   return outcome;
 }
 
+// Every candidate refitted from `baseline`, in parallel, and scored against it.
+std::vector<CandidateOutcome> fit_candidates(const DiscoverSetup& setup, const Baseline& baseline,
+                                             const std::vector<double>& noise,
+                                             const std::vector<std::vector<double>>& measured,
+                                             const std::vector<EffectCandidate>& tried,
+                                             int& simulations) {
+  std::vector<CandidateOutcome> outcomes(tried.size());
+  const std::vector<std::string> labels(tried.size(), "candidate");
+  run_in_parallel(labels, setup.request.threads, [&](std::size_t c) {
+    outcomes[c] = fit_candidate(setup, baseline.result, noise, tried[c]);
+  });
+  for (auto& outcome : outcomes) {
+    simulations += outcome.result.simulations;
+    if (outcome.status == "fitted") score(outcome, baseline, noise, measured, setup);
+  }
+  return outcomes;
+}
+
+// Only the best member of a family (lowest BIC) competes for the verdict: the family's model
+// order is chosen by the same criterion as the effect.
+void choose_members(std::vector<CandidateOutcome>& outcomes) {
+  for (auto& outcome : outcomes) {
+    outcome.superseded = false;
+    if (outcome.status != "fitted") continue;
+    for (const auto& other : outcomes) {
+      if (&other == &outcome || other.status != "fitted" || other.name != outcome.name) continue;
+      if (other.bic < outcome.bic || (other.bic == outcome.bic && other.order < outcome.order))
+        outcome.superseded = true;
+    }
+  }
+}
+
+// The base model is at the noise floor when every output's validation residual is white
+// (Ljung-Box p >= 0.01) and its RMSE within the margin above the floor.
+std::vector<bool> at_noise_floor(const FitResult& base, const ResidualDiagnostics& diagnostics,
+                                 const DiscoverSetup& setup) {
+  std::vector<bool> at_noise;
+  for (std::size_t k = 0; k < setup.floor.size(); ++k) {
+    at_noise.push_back(base.validation.rmse[k] <=
+                           (1.0 + setup.request.floor_margin) * setup.floor[k] &&
+                       diagnostics.outputs[k].whiteness.p_value >= 0.01);
+  }
+  return at_noise;
+}
+
 }  // namespace
+
+const char* verdict_kind_name(VerdictKind kind) {
+  switch (kind) {
+    case VerdictKind::effect:
+      return "effect";
+    case VerdictKind::none:
+      return "none";
+    case VerdictKind::unexplained:
+      break;
+  }
+  return "unexplained";
+}
+
+double above_noise_gap_closed(const std::vector<double>& base_rmse,
+                              const std::vector<double>& augmented_rmse,
+                              const std::vector<double>& floor) {
+  const double base = combined_rmse(base_rmse, floor);
+  if (!(base > 1.0)) return kNaN;
+  return (base - combined_rmse(augmented_rmse, floor)) / (base - 1.0);
+}
 
 double combined_rmse(const std::vector<double>& rmse, const std::vector<double>& noise) {
   double sum = 0.0;
@@ -190,6 +294,12 @@ Discovery discover(const DiscoverSetup& setup) {
   }
   base.simulations = base_simulations;  // both stages
   simulations += base_simulations;
+  // Its cost in the weights the candidates are fitted with (a single output keeps the first
+  // stage's fit, whose cost was in the first weights), so that each candidate's is comparable.
+  base.cost = 0.0;
+  for (std::size_t k = 0; k < noise.size(); ++k)
+    base.cost += 0.5 * static_cast<double>(base.identification.samples) *
+                 std::pow(base.identification.rmse[k] / noise[k], 2);
   for (std::size_t k = 0; k < noise.size(); ++k) spec.problem.outputs[k].noise = noise[k];
   Baseline baseline = baseline_of(spec, base, noise);
   const auto measured = measured_outputs(spec.problem, spec.problem.validation);
@@ -211,22 +321,16 @@ Discovery discover(const DiscoverSetup& setup) {
     if (wanted.empty() || std::find(wanted.begin(), wanted.end(), skipped.name) != wanted.end())
       discovery.skipped.push_back(std::move(skipped));
   }
-  std::vector<CandidateOutcome> outcomes(tried.size());
-  const std::vector<std::string> labels(tried.size(), "candidate");
-  run_in_parallel(labels, setup.request.threads, [&](std::size_t c) {
-    outcomes[c] = fit_candidate(setup, base, noise, tried[c]);
-  });
-  for (auto& outcome : outcomes) {
-    if (outcome.status != "fitted") continue;
-    simulations += outcome.result.simulations;
-    score(outcome, baseline, noise, measured, setup.request);
-  }
+  std::vector<CandidateOutcome> outcomes =
+      fit_candidates(setup, baseline, noise, measured, tried, simulations);
+  choose_members(outcomes);
   rank(outcomes);
 
   // Re-tuning is not an effect: refit the base model from where the best candidate left its
-  // parameters; if that alone does as well, the base fit had stopped short, and every
-  // candidate is judged again against the better base.
-  for (int round = 0; round < 2 && !outcomes.empty() && outcomes.front().significant; ++round) {
+  // parameters. If that alone lowers the base cost by more than half a unit (one in the BIC),
+  // the base fit had stopped short, and every candidate is fitted again from the better base,
+  // so that each still nests the base it is judged against.
+  if (!outcomes.empty() && outcomes.front().status == "fitted" && outcomes.front().significant) {
     std::vector<ParameterEstimate> start(
         outcomes.front().result.estimates.begin(),
         outcomes.front().result.estimates.begin() + static_cast<long>(base.estimates.size()));
@@ -234,12 +338,13 @@ Discovery discover(const DiscoverSetup& setup) {
     for (std::size_t k = 0; k < noise.size(); ++k) retuned_spec.problem.outputs[k].noise = noise[k];
     FitResult retuned = fit_base(retuned_spec, 0);
     simulations += retuned.simulations;
-    if (!(retuned.cost < baseline.result.cost * (1 - 1e-9))) break;
-    baseline = baseline_of(retuned_spec, retuned, noise);
-    for (auto& outcome : outcomes) {
-      if (outcome.status == "fitted") score(outcome, baseline, noise, measured, setup.request);
+    if (retuned.cost < baseline.result.cost - 0.5) {
+      baseline = baseline_of(retuned_spec, retuned, noise);
+      outcomes = fit_candidates(setup, baseline, noise, measured, tried, simulations);
+      choose_members(outcomes);
+      rank(outcomes);
+      discovery.base_rounds = 2;
     }
-    rank(outcomes);
   }
 
   discovery.base = baseline.result;
@@ -254,9 +359,20 @@ Discovery discover(const DiscoverSetup& setup) {
           signature_evidence(outcome.name, discovery.diagnostics, baseline.spec.problem);
   }
   discovery.candidates = std::move(outcomes);
-  discovery.verdict = !discovery.candidates.empty() && discovery.candidates.front().significant
-                          ? discovery.candidates.front().name
-                          : "none";
+  discovery.at_noise = at_noise_floor(discovery.base, discovery.diagnostics, setup);
+  const bool named = !discovery.candidates.empty() &&
+                     discovery.candidates.front().status == "fitted" &&
+                     discovery.candidates.front().significant;
+  const bool at_noise =
+      std::all_of(discovery.at_noise.begin(), discovery.at_noise.end(), [](bool at) { return at; });
+  discovery.kind = named      ? VerdictKind::effect
+                   : at_noise ? VerdictKind::none
+                              : VerdictKind::unexplained;
+  discovery.verdict = named ? discovery.candidates.front().name : verdict_kind_name(discovery.kind);
+  discovery.gap_closed =
+      named ? above_noise_gap_closed(discovery.base.validation.rmse,
+                                     discovery.candidates.front().validation_rmse, setup.floor)
+            : (at_noise ? kNaN : 0.0);
   discovery.simulations = simulations;
   discovery.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -18,16 +18,25 @@ namespace tcpmsim::fit {
 
 // One candidate's outcome.
 struct CandidateOutcome {
-  std::string name;
+  std::string name;    // its family, which a verdict names
+  std::string member;  // its form within the family
+  int order = 1;
   std::string description;
   std::string status;  // "fitted", "failed" (message in reason), "skipped" (reason)
   std::string reason;
+  // The refit's cost at its nested start (the base model, the effect at zero size) and whether
+  // it was fitted again from there because the multistart ended above it.
+  double nested_cost = 0.0;
+  bool retried = false;
+  // Another member of its family has the lower BIC: only the best member of a family competes.
+  bool superseded = false;
   FitSpec spec;  // the augmented model's fit
   FitResult result;
   double bic = 0.0;
   double delta_bic = 0.0;               // against the base model; negative is better
   std::vector<double> validation_rmse;  // per output
   double gap_shrink = 0.0;              // 1 - combined rmse_aug / rmse_base
+  double gap_closed = 0.0;              // of the gap above the noise floor (NaN: none)
   // Its signature in the validation window, which the fit has not seen: the change d it makes
   // to the outputs against the base model's residual r (noise-weighted sums over the outputs),
   // as the correlation sum(r d) / (|r| |d|), and as the matched-filter statistic
@@ -40,6 +49,13 @@ struct CandidateOutcome {
   double seconds = 0.0;  // wall time of its fit
 };
 
+// What a discovery concludes: an effect is named (the best significant candidate); `none`, the
+// base model already fits to the noise (every output's validation residual is white and its
+// RMSE within the margin of the noise floor); or `unexplained`, the residual is structured
+// and no candidate explains it.
+enum class VerdictKind { effect, none, unexplained };
+const char* verdict_kind_name(VerdictKind kind);
+
 struct Discovery {
   DiscoverSetup setup;
   FitResult base;
@@ -48,12 +64,26 @@ struct Discovery {
   ResidualDiagnostics diagnostics;  // of the base model on the validation window
   std::vector<CandidateOutcome> candidates;  // ranked: significant first, then by delta_bic
   std::vector<SkippedCandidate> skipped;
-  std::string verdict;  // an effect's name, or "none"
+  VerdictKind kind = VerdictKind::none;
+  std::string verdict;  // an effect's name, "none" or "unexplained"
+  // Whether each output's base validation residual is at the noise floor (white, RMSE within
+  // the margin), and the share of the above-noise gap, (rmse_base - rmse_aug) /
+  // (rmse_base - floor) with outputs combined over their floors, that the verdict's effect
+  // closes (0 without one; NaN when the base is already at the floor).
+  std::vector<bool> at_noise;
+  double gap_closed = 0.0;
+  int base_rounds = 1;  // candidate rounds: a second when re-tuning improved the base model
   int simulations = 0;
   double seconds = 0.0;
 };
 
 Discovery discover(const DiscoverSetup& setup);
+
+// The share of the above-noise gap an augmented model closes: (r_base - r_aug) / (r_base - 1),
+// r the combined RMSEs over the floors; NaN when the base is at or below the floor.
+double above_noise_gap_closed(const std::vector<double>& base_rmse,
+                              const std::vector<double>& augmented_rmse,
+                              const std::vector<double>& floor);
 
 // The combined validation RMSE of several outputs, each over its noise: sqrt(mean (rmse/noise)^2).
 double combined_rmse(const std::vector<double>& rmse, const std::vector<double>& noise);

@@ -202,8 +202,40 @@ std::string signature_evidence(const std::string& effect, const ResidualDiagnost
   } else if (effect == "temperature_dependent_stiffness") {
     corr("temperature rise x deflection");
     out << white;
+  } else if (effect == "ratchet") {
+    out << "drift t = " << value_text(output.drift.t_statistic) << ", ";
+    corr("temperature rise");
+    out << white;
+  } else if (effect == "heating_dependent_convection") {
+    corr("power");
+    out << ", ";
+    corr("temperature rise");
+    out << white;
   }
   return out.str();
+}
+
+std::vector<SignatureStrength> ranked_signatures(const ResidualDiagnostics& diagnostics,
+                                                 std::size_t output) {
+  const OutputDiagnostics& diagnosed = diagnostics.outputs[output];
+  std::vector<SignatureStrength> ranked;
+  for (const auto& [feature, value] : diagnosed.features) {
+    if (std::isfinite(value) && diagnostics.bound > 0)
+      ranked.push_back(
+          {"corr(r, " + feature + ") = " + value_text(value), std::abs(value) / diagnostics.bound});
+  }
+  for (const auto& [input, cross] : diagnosed.inputs) {
+    if (std::isfinite(cross.peak) && cross.bound > 0)
+      ranked.push_back({"cross-correlation with " + input + " peaks at " + value_text(cross.peak) +
+                            " at lag " + std::to_string(cross.peak_lag) + " samples",
+                        std::abs(cross.peak) / cross.bound});
+  }
+  if (std::isfinite(diagnosed.drift.t_statistic))
+    ranked.push_back({"drift t = " + value_text(diagnosed.drift.t_statistic),
+                      std::abs(diagnosed.drift.t_statistic) / 1.96});
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [](const auto& a, const auto& b) { return a.strength > b.strength; });
+  return ranked;
 }
 
 }  // namespace tcpmsim::fit

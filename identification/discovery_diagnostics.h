@@ -52,4 +52,14 @@ ResidualDiagnostics diagnose(const FitProblem& problem, const std::vector<double
 std::string signature_evidence(const std::string& effect, const ResidualDiagnostics& diagnostics,
                                const FitProblem& problem);
 
+// What the residual of `output` follows, strongest first: each feature's correlation, each
+// input's cross-correlation peak and the drift, with its strength as a multiple of what white
+// noise reaches (1: the 95 % bound). What `unexplained` reports in place of an effect.
+struct SignatureStrength {
+  std::string what;  // "corr(r, last direction of motion) = -0.58"
+  double strength = 0.0;
+};
+std::vector<SignatureStrength> ranked_signatures(const ResidualDiagnostics& diagnostics,
+                                                 std::size_t output);
+
 }  // namespace tcpmsim::fit

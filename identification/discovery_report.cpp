@@ -22,7 +22,7 @@ const FitProblem& problem_of(const Discovery& discovery) {
 
 // The verdict's outcome, or null.
 const CandidateOutcome* verdict_of(const Discovery& discovery) {
-  if (discovery.verdict == "none") return nullptr;
+  if (discovery.kind != VerdictKind::effect) return nullptr;
   return &discovery.candidates.front();
 }
 
@@ -86,15 +86,28 @@ std::string text(double value, int digits = 3) {
 std::string discovery_json(const Discovery& discovery) {
   nlohmann::json json;
   json["verdict"] = discovery.verdict;
+  json["verdict_kind"] = verdict_kind_name(discovery.kind);
+  if (const auto* verdict = verdict_of(discovery)) {
+    json["member"] = verdict->member;
+    json["order"] = verdict->order;
+  }
   json["model"] = discovery.setup.request.model_file;
   json["data"] = discovery.setup.request.data_file;
   json["ranking"] = nlohmann::json::array();
   for (const auto& candidate : discovery.candidates) {
-    nlohmann::json entry = {{"effect", candidate.name}, {"status", candidate.status}};
+    nlohmann::json entry = {{"effect", candidate.name},
+                            {"member", candidate.member},
+                            {"order", candidate.order},
+                            {"status", candidate.status},
+                            {"nested_cost", candidate.nested_cost},
+                            {"retried_from_nested_start", candidate.retried}};
     if (candidate.status == "fitted") {
+      entry["cost"] = candidate.result.cost;
+      entry["superseded_in_family"] = candidate.superseded;
       entry["delta_bic"] = candidate.delta_bic;
       entry["validation_rmse"] = rmse_json(discovery, candidate.validation_rmse);
       entry["gap_shrink"] = candidate.gap_shrink;
+      entry["gap_closed"] = number_or_null(candidate.gap_closed);
       entry["signature_match"] = candidate.signature_match;
       entry["signature_z"] = candidate.signature_z;
       entry["significant"] = candidate.significant;
@@ -118,6 +131,8 @@ std::string discovery_json(const Discovery& discovery) {
       {"validation_rmse", rmse_json(discovery, discovery.base.validation.rmse)},
       {"identification_rmse", rmse_json(discovery, discovery.base.identification.rmse)},
       {"bic", discovery.base_bic},
+      {"cost", discovery.base.cost},
+      {"candidate_rounds", discovery.base_rounds},
       {"simulations", discovery.base.simulations},
       {"gradient", discovery.base.gradient},
       {"parameters", estimates_json(discovery.base)}};
@@ -127,7 +142,17 @@ std::string discovery_json(const Discovery& discovery) {
                        {"validation_rmse", rmse_json(discovery, augmented_rmse)},
                        {"parameters", estimates_json(verdict ? verdict->result : discovery.base)}};
   json["gap_shrink"] = verdict ? verdict->gap_shrink : 0.0;
+  json["gap_closed"] = number_or_null(discovery.gap_closed);
   json["noise"] = rmse_json(discovery, discovery.noise);
+  json["noise_floor"] = rmse_json(discovery, discovery.setup.floor);
+  json["noise_floor_source"] = nlohmann::json::object();
+  json["at_noise_floor"] = nlohmann::json::object();
+  for (std::size_t k = 0; k < discovery.setup.floor.size(); ++k) {
+    const std::string& channel = problem_of(discovery).outputs[k].channel;
+    json["noise_floor_source"][channel] =
+        discovery.setup.floor_given[k] ? "given (--noise)" : "estimated from the data";
+    json["at_noise_floor"][channel] = static_cast<bool>(discovery.at_noise[k]);
+  }
   json["spikes_replaced"] = nlohmann::json::object();
   for (std::size_t k = 0; k < discovery.setup.cleaned.size(); ++k)
     json["spikes_replaced"][problem_of(discovery).outputs[k].channel] = discovery.setup.cleaned[k];
@@ -137,6 +162,8 @@ std::string discovery_json(const Discovery& discovery) {
                       {"bic_threshold", request.bic_threshold},
                       {"min_gap_shrink", request.min_gap_shrink},
                       {"min_signature", request.min_signature},
+                      {"floor_margin", request.floor_margin},
+                      {"min_gap_closed", request.min_gap_closed},
                       {"starts", request.starts},
                       {"seed", request.seed}};
   json["simulations"] = discovery.simulations;
@@ -154,24 +181,36 @@ std::string discovery_summary(const Discovery& discovery) {
   for (std::size_t k = 0; k < outputs.size(); ++k)
     out << " " << outputs[k].channel << " " << text(discovery.base.validation.rmse[k], 4) << " "
         << outputs[k].unit;
+  out << "\n  noise floor:";
+  for (std::size_t k = 0; k < outputs.size(); ++k)
+    out << " " << outputs[k].channel << " " << text(discovery.setup.floor[k], 4) << " "
+        << outputs[k].unit << (discovery.setup.floor_given[k] ? " (given)" : " (from the data)")
+        << (discovery.at_noise[k] ? ", base at it" : ", base above it");
   out << "\n  " << std::left << std::setw(34) << "effect" << std::setw(12) << "delta BIC"
       << std::setw(12) << "gap shrink" << std::setw(13) << "signature z"
       << "significant\n";
   for (const auto& candidate : discovery.candidates) {
-    out << "  " << std::setw(34) << candidate.name;
+    out << "  " << std::setw(34) << (candidate.name + " [" + std::to_string(candidate.order) + "]");
     if (candidate.status != "fitted") {
       out << candidate.status << ": " << candidate.reason << "\n";
       continue;
     }
     out << std::setw(12) << text(candidate.delta_bic, 4) << std::setw(12)
         << text(candidate.gap_shrink, 3) << std::setw(13) << text(candidate.signature_z, 3)
-        << (candidate.significant ? "yes" : "no") << "\n";
+        << (candidate.significant ? "yes" : "no")
+        << (candidate.superseded ? " (another member of its family does better)" : "") << "\n";
   }
   for (const auto& skipped : discovery.skipped)
     out << "  " << std::setw(34) << skipped.name << "skipped: " << skipped.reason << "\n";
   out << "verdict: " << discovery.verdict;
   if (const auto* verdict = verdict_of(discovery))
-    out << " (validation gap shrinks by " << text(100 * verdict->gap_shrink, 3) << " %)";
+    out << " (" << verdict->member << "; validation gap shrinks by "
+        << text(100 * verdict->gap_shrink, 3) << " %, " << text(100 * discovery.gap_closed, 3)
+        << " % of the gap above the noise floor closed)";
+  else if (discovery.kind == VerdictKind::none)
+    out << " (the base model fits to the noise floor)";
+  else
+    out << " (the base model misses by more than the noise and no candidate explains it)";
   out << "\n";
   return out.str();
 }
@@ -185,7 +224,18 @@ std::string discovery_report(const Discovery& discovery) {
       << "`: identification [" << text(problem.identification.from, 6) << " s, "
       << text(problem.identification.to, 6) << " s], validation ["
       << text(problem.validation.from, 6) << " s, " << text(problem.validation.to, 6) << " s].\n\n";
-  out << "## Where the base model disagrees (validation residual)\n\n";
+  out << "## The base fit\n\n| parameter | estimate | standard error | unit |\n|---|---|---|---|\n";
+  for (const auto& estimate : discovery.base.estimates)
+    out << "| " << estimate.path << " | " << text(estimate.value, 6) << " | "
+        << text(estimate.standard_error, 3) << (estimate.identifiable ? "" : " (not identified)")
+        << " | " << estimate.unit << " |\n";
+  if (!discovery.base.identifiability.empty()) {
+    out << "\n**Warning**: the data leave parameters of the base model poorly identified, so an "
+           "effect may trade against them and its estimates with theirs; fix or remove them "
+           "(--parameters) before reading much into the numbers:\n\n";
+    for (const auto& problem : discovery.base.identifiability) out << "- " << problem << "\n";
+  }
+  out << "\n## Where the base model disagrees (validation residual)\n\n";
   for (std::size_t k = 0; k < discovery.diagnostics.outputs.size(); ++k) {
     const auto& output = discovery.diagnostics.outputs[k];
     out << "- **" << output.channel << "**: RMSE " << text(discovery.base.validation.rmse[k], 4)
@@ -209,38 +259,86 @@ std::string discovery_report(const Discovery& discovery) {
       out << "; loop area against deflection ~ f^" << text(output.loop.exponent, 2);
     out << ".\n";
   }
-  out << "\n## Candidates\n\n| effect | delta BIC | gap shrink | signature z (corr) | significant "
-         "| evidence in the base residual |\n|---|---|---|---|---|---|\n";
+  out << "\n## Candidates\n\n| effect | form | delta BIC | gap shrink | signature z (corr) | "
+         "significant | evidence in the base residual |\n|---|---|---|---|---|---|---|\n";
   for (const auto& candidate : discovery.candidates) {
     if (candidate.status != "fitted") {
-      out << "| " << candidate.name << " | failed: " << candidate.reason << " | | | | |\n";
+      out << "| " << candidate.name << " | " << candidate.member
+          << " | failed: " << candidate.reason << " | | | | |\n";
       continue;
     }
-    out << "| " << candidate.name << " | " << text(candidate.delta_bic, 4) << " | "
-        << text(100 * candidate.gap_shrink, 3) << " % | " << text(candidate.signature_z, 3) << " ("
-        << text(candidate.signature_match, 2) << ") | " << (candidate.significant ? "yes" : "no")
-        << " | " << candidate.signature_evidence << " |\n";
+    out << "| " << candidate.name << " | " << candidate.member
+        << (candidate.superseded ? " (not its family's best)" : "")
+        << (candidate.retried ? " (refitted from zero size)" : "") << " | "
+        << text(candidate.delta_bic, 4) << " | " << text(100 * candidate.gap_shrink, 3) << " % | "
+        << text(candidate.signature_z, 3) << " (" << text(candidate.signature_match, 2) << ") | "
+        << (candidate.significant ? "yes" : "no") << " | " << candidate.signature_evidence
+        << " |\n";
   }
   for (const auto& skipped : discovery.skipped)
-    out << "| " << skipped.name << " | skipped: " << skipped.reason << " | | | | |\n";
+    out << "| " << skipped.name << " | | skipped: " << skipped.reason << " | | | | |\n";
   out << "\nA candidate is significant when it lowers the BIC by more than "
       << text(request.bic_threshold) << " on the identification window, shrinks the validation "
       << "RMSE by more than " << text(100 * request.min_gap_shrink) << " %, and the change it "
       << "makes to the outputs explains the base model's validation residual, which no fit has "
       << "seen (its signature: the matched-filter z = sum(r d) / |d| in noise units, standard "
       << "normal for a residual of noise alone, at least " << text(request.min_signature)
-      << "). The base model was refitted on the same window, and again from the best "
-         "candidate's base parameters, so re-tuning them is not counted as an effect.\n\n"
+      << "), and, where the base model misses by more than the noise, it closes at least "
+      << text(100 * request.min_gap_closed) << " % of the gap above the noise floor"
+      << ". Every candidate starts from the base fit with its effect at zero size, where it is "
+         "the base model, so its fit can only end at or below the base model's cost; one that "
+         "ends above is fitted again from there and otherwise reported as failed. Within a "
+         "family (one Dahl element or a Prandtl-Ishlinskii operator, one relaxation branch or "
+         "two) the member with the lowest BIC competes. The base model was refitted from the "
+         "best candidate's base parameters ("
+      << discovery.base_rounds
+      << (discovery.base_rounds > 1 ? " candidate rounds: re-tuning improved it" : " round")
+      << "), so re-tuning them is not counted as an effect.\n\n"
          "## Verdict\n\n";
   if (const auto* verdict = verdict_of(discovery)) {
     out << "**" << verdict->name << "**: " << verdict->description << ". Validation RMSE";
     for (std::size_t k = 0; k < problem.outputs.size(); ++k)
       out << " " << problem.outputs[k].channel << " " << text(discovery.base.validation.rmse[k], 4)
           << " -> " << text(verdict->validation_rmse[k], 4) << " " << problem.outputs[k].unit;
-    out << " (gap shrink " << text(100 * verdict->gap_shrink, 3) << " %). " << verdict->signature
-        << ": " << verdict->signature_evidence << ".\n";
+    out << " (gap shrink " << text(100 * verdict->gap_shrink, 3) << " %). Form: " << verdict->member
+        << ". " << verdict->signature << ": " << verdict->signature_evidence << ".";
+    out << " The effect closes " << text(100 * discovery.gap_closed, 3)
+        << " % of the gap above the noise floor.\n";
+  } else if (discovery.kind == VerdictKind::none) {
+    out << "**none**: the base model fits to the noise floor (every output's validation residual "
+           "is white and within "
+        << text(100 * request.floor_margin) << " % of its floor), and no candidate improves it "
+        << "significantly.\n";
   } else {
-    out << "**none**: no candidate improves the model significantly.\n";
+    out << "**unexplained**: the base model misses by more than the noise, and no candidate of "
+           "the catalogue explains it. Do not read this as a complete model.\n";
+  }
+  out << "\nNoise floor (validation RMSE of the base model against it):";
+  for (std::size_t k = 0; k < problem.outputs.size(); ++k)
+    out << " " << problem.outputs[k].channel << " " << text(discovery.setup.floor[k], 4) << " "
+        << problem.outputs[k].unit << " ("
+        << (discovery.setup.floor_given[k] ? "given" : "estimated from the data") << "; "
+        << text(discovery.base.validation.rmse[k] / discovery.setup.floor[k], 3) << " times)";
+  out << ".\n";
+  if (discovery.kind == VerdictKind::unexplained) {
+    out << "\nWhat the base residual follows, strongest first (multiples of what white noise "
+           "reaches):\n\n";
+    for (std::size_t k = 0; k < problem.outputs.size(); ++k) {
+      if (discovery.at_noise[k]) continue;
+      const auto ranked = ranked_signatures(discovery.diagnostics, k);
+      out << "- **" << problem.outputs[k].channel << "**: ";
+      for (std::size_t i = 0; i < std::min<std::size_t>(ranked.size(), 5); ++i)
+        out << (i ? "; " : "") << ranked[i].what << " (" << text(ranked[i].strength, 2) << "x)";
+      out << ".\n";
+    }
+    const auto* best = discovery.candidates.empty() ? nullptr : &discovery.candidates.front();
+    const double closed = best && best->status == "fitted"
+                              ? above_noise_gap_closed(discovery.base.validation.rmse,
+                                                       best->validation_rmse, discovery.setup.floor)
+                              : 0.0;
+    out << "\nThe best candidate" << (best ? " (" + best->name + ", " + best->member + ")" : "")
+        << " closes " << text(100 * closed, 3) << " % of the gap above the noise floor; "
+        << text(100 * (1 - closed), 3) << " % remains.\n";
   }
   return out.str();
 }

@@ -4,11 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <stdexcept>
 
 #include "identification/effect_catalogue.h"
+#include "identification/noise_floor.h"
 #include "kinds/standard_kinds.h"
 #include "sim/config/config_error.h"
 #include "sim/value_check.h"
@@ -184,14 +186,68 @@ double median(std::vector<double> values) {
   return *middle;
 }
 
+// The noise floor of each output: given by --noise ("force=2 mN"), else estimated from the
+// measurement (both windows, spikes replaced).
+void read_floors(const DiscoverRequest& request, const UnitSystem& units, DiscoverSetup& setup) {
+  const auto& outputs = setup.base.problem.outputs;
+  setup.floor.assign(outputs.size(), 0.0);
+  setup.floor_given.assign(outputs.size(), false);
+  for (const auto& entry : request.noise) {
+    const auto equals = entry.find('=');
+    const std::string channel = entry.substr(0, std::min(equals, entry.size()));
+    const auto output = std::find_if(outputs.begin(), outputs.end(),
+                                     [&](const FitOutput& o) { return o.channel == channel; });
+    if (equals == std::string::npos || output == outputs.end())
+      throw UsageError("--noise " + entry +
+                       ": expected OUTPUT=VALUE UNIT for a compared output, e.g. force=2 mN");
+    const std::string text = entry.substr(equals + 1);
+    char* end = nullptr;
+    const double value = std::strtod(text.c_str(), &end);
+    std::string unit(end);
+    unit.erase(0, unit.find_first_not_of(' '));
+    if (unit.empty()) unit = output->unit;
+    if (end == text.c_str() || !std::isfinite(value) || !(value > 0.0) ||
+        !units.convertible(unit, output->unit))
+      throw UsageError("--noise " + entry + ": expected a positive " + output->unit +
+                       " quantity for " + channel +
+                       " (in its unit or one convertible to it), e.g. force=2 mN");
+    const auto k = static_cast<std::size_t>(output - outputs.begin());
+    setup.floor[k] = units.convert(value, unit, output->unit);
+    setup.floor_given[k] = true;
+  }
+  const FitProblem& problem = setup.base.problem;
+  const TimeWindow whole{problem.identification.from, problem.validation.to};
+  const auto measured = measured_outputs(problem, whole);
+  const auto [first, last] = samples_in(*problem.data, whole);
+  std::vector<std::vector<double>> inputs;
+  for (const auto& name : request.inputs) {
+    const auto& values = problem.data->find(name)->values;
+    inputs.emplace_back(values.begin() + static_cast<long>(first),
+                        values.begin() + static_cast<long>(last));
+  }
+  std::vector<const std::vector<double>*> replayed;
+  for (const auto& input : inputs) replayed.push_back(&input);
+  const auto steps = steps_in_inputs(replayed, last - first);
+  for (std::size_t k = 0; k < outputs.size(); ++k) {
+    if (setup.floor_given[k]) continue;
+    setup.floor[k] = difference_noise_floor(measured[k], steps);
+    if (!(setup.floor[k] > 0.0))
+      throw UsageError("--noise: the measured " + outputs[k].channel +
+                       " holds no noise to estimate a floor from (constant or too short); give "
+                       "it, e.g. --noise " +
+                       outputs[k].channel + "=VALUE UNIT");
+  }
+}
+
 }  // namespace
 
 namespace {
 
 // The samples of `values` that stand more than 5 noise standard deviations (robustly, from the
-// second differences) off both the median of the three samples before and of the three after,
-// on the same side; with the mean of those medians.
-std::vector<std::pair<std::size_t, double>> spikes_in(const std::vector<double>& values) {
+// second differences) and more than `least` off both the median of the three samples before and
+// of the three after, on the same side; with the mean of those medians.
+std::vector<std::pair<std::size_t, double>> spikes_in(const std::vector<double>& values,
+                                                      double least = 0.0) {
   std::vector<std::pair<std::size_t, double>> found;
   const std::size_t n = values.size();
   if (n < 7) return found;
@@ -206,7 +262,7 @@ std::vector<std::pair<std::size_t, double>> spikes_in(const std::vector<double>&
     const double after = median({values[i + 1], values[i + 2], values[i + 3]});
     const double from_before = values[i] - before, from_after = values[i] - after;
     if (from_before * from_after > 0 &&
-        std::min(std::abs(from_before), std::abs(from_after)) > 5 * sigma)
+        std::min(std::abs(from_before), std::abs(from_after)) > std::max(5 * sigma, least))
       found.emplace_back(i, 0.5 * (before + after));
   }
   return found;
@@ -217,11 +273,16 @@ std::vector<std::pair<std::size_t, double>> spikes_in(const std::vector<double>&
 MeasuredData without_spikes(const MeasuredData& data, const std::vector<std::string>& channels,
                             const std::vector<std::string>& inputs,
                             std::vector<std::size_t>& replaced) {
-  // An input's own one-sample excursion drives a true one in the outputs: those stay.
+  // An input's own one-sample excursion drives a true one in the outputs: those stay. A replayed
+  // input is often noise-free (piecewise constant, or on a grid), so its noise scale is 0 and
+  // every smooth peak of a multisine would count: an excursion must also span 2 % of the
+  // input's range.
   std::vector<char> driven(data.time().size(), 0);
   for (const auto& input : inputs) {
     if (const MeasuredChannel* channel = data.find(input)) {
-      for (const auto& [i, level] : spikes_in(channel->values)) {
+      const auto [low, high] = std::minmax_element(channel->values.begin(), channel->values.end());
+      const double least = channel->values.empty() ? 0.0 : 0.02 * (*high - *low);
+      for (const auto& [i, level] : spikes_in(channel->values, least)) {
         (void)level;
         for (std::size_t j = i - 1; j <= i + 1; ++j) driven[j] = 1;
       }
@@ -307,6 +368,7 @@ DiscoverSetup setup_discovery(const DiscoverRequest& request,
   spec.settings.refine = 2;
   spec.settings.seed = request.seed;
   spec.settings.threads = request.threads;
+  read_floors(request, *units, setup);
   return setup;
 }
 

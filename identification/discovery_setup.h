@@ -26,6 +26,14 @@ struct DiscoverRequest {
   double min_signature = 3.0;   // and what it changes must explain the base model's validation
                                 // residual: its matched-filter z (see CandidateOutcome)
   bool despike_all = false;     // remove spikes from every output, not the coil's measure only
+  // The noise floor of outputs whose floor is known ("force=2 mN"); the others' is estimated
+  // from the data (difference_noise_floor).
+  std::vector<std::string> noise;
+  // `none` needs every output's base validation RMSE within this fraction above its floor.
+  double floor_margin = 0.25;
+  // Where the base model misses by more than that, a significant candidate must also close this
+  // share of the gap above the floor to be named (else the verdict is unexplained).
+  double min_gap_closed = 0.2;
 };
 
 // The measurement, the base model and the fit problem discover works on, checked.
@@ -34,6 +42,8 @@ struct DiscoverSetup {
   FitSpec base;                        // the base model's fit (parameters with bounds)
   std::vector<std::string> overrides;  // every scenario discover builds takes these first
   std::vector<std::size_t> cleaned;    // per output: spike samples replaced
+  std::vector<double> floor;           // per output: the measurement's noise floor [unit]
+  std::vector<bool> floor_given;       // per output: by --noise (else estimated from the data)
   std::shared_ptr<const UnitSystem> units;
 };
 
@@ -53,7 +63,8 @@ std::vector<double> initial_noise(const FitProblem& problem);
 // the median of the three samples before it and that of the three after, on the same side,
 // takes their mean. Isolated and adjacent spikes go; a step's edge (it agrees with one side) and
 // a ramp (it lies between) stay, and so does a sample next to a one-sample excursion of one of
-// the `inputs`, which drives a true one. `replaced` counts them per channel of `channels`.
+// the `inputs` (by the same test, spanning at least 2 % of the input's range), which drives a
+// true one. `replaced` counts them per channel of `channels`.
 MeasuredData without_spikes(const MeasuredData& data, const std::vector<std::string>& channels,
                             const std::vector<std::string>& inputs,
                             std::vector<std::size_t>& replaced);

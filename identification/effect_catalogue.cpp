@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <stdexcept>
 
@@ -21,6 +22,7 @@ struct BaseModel {
   double k1 = 0.0, k2 = 0.0;
   double heat_capacity = 0.0, conductance = 0.0, ambient = 0.0;  // C, hA, T_amb
   std::optional<std::pair<double, double>> deflection;           // measured range
+  double power_peak = 0.0;                                       // the measured power's largest
   std::string lambda_path;                                       // <muscle>.inductance.lambda_T
   double lambda_scale = 0.0;                                     // |lambda_0|
   YAML::Node effects;                                            // the muscle's own, if any
@@ -59,6 +61,8 @@ BaseModel read_base(const Scenario& scenario, const Context& fitted, const Measu
     const auto [low, high] = std::minmax_element(channel->values.begin(), channel->values.end());
     if (*high > *low) base.deflection = std::make_pair(*low, *high);
   }
+  if (const auto* channel = data.find("power"); channel && !channel->values.empty())
+    base.power_peak = *std::max_element(channel->values.begin(), channel->values.end());
   base.lambda_path = m + ".inductance.lambda_T";
   if (auto lambda_0 = parameter(fitted, m + ".inductance.lambda_0"))
     base.lambda_scale = std::abs(*lambda_0);
@@ -81,34 +85,40 @@ std::string flow_text(const YAML::Node& node) {
   return flow.c_str();
 }
 
-// Builds one candidate: an effect section appended to the muscle's effects, its fitted keys.
+// Builds one candidate: effect sections appended to the muscle's effects, its fitted keys.
 class CandidateBuilder {
  public:
-  CandidateBuilder(const BaseModel& base, std::string name, std::string description,
-                   std::string signature)
+  CandidateBuilder(const BaseModel& base, std::string name, std::string member, int order,
+                   std::string description, std::string signature)
       : base_(base) {
     candidate_.name = std::move(name);
+    candidate_.member = std::move(member);
+    candidate_.order = order;
     candidate_.description = std::move(description);
     candidate_.signature = std::move(signature);
   }
-  // The effect section's kind.
+  // A new effect section of this kind; the keys that follow go into it.
   CandidateBuilder& attach(const std::string& kind) {
-    section_["type"] = kind;
-    section_["name"] = candidate_.name;
+    sections_.emplace_back();
+    sections_.back()["type"] = kind;
+    sections_.back()["name"] =
+        candidate_.name + (sections_.size() > 1 ? "_" + std::to_string(sections_.size()) : "");
     return *this;
   }
   // A key at a fixed value.
   CandidateBuilder& fixed(const std::string& key, double value, const std::string& unit) {
-    section_[key] = quantity(value, unit);
+    sections_.back()[key] = quantity(value, unit);
     return *this;
   }
-  // A key the refit frees within [lower, upper], starting at `initial`.
-  CandidateBuilder& free(const std::string& key, double initial, double lower, double upper,
+  // A key the refit frees within [lower, upper]; the scenario and the refit's first start hold
+  // it at `nested`, where the member is the base model.
+  CandidateBuilder& free(const std::string& key, double nested, double lower, double upper,
                          const std::string& unit) {
-    fixed(key, initial, unit);
-    const auto index = base_.effects ? base_.effects.size() : 0;
+    fixed(key, nested, unit);
+    const auto index = (base_.effects ? base_.effects.size() : 0) + sections_.size() - 1;
     candidate_.parameters.push_back(
         {base_.muscle + ".effects[" + std::to_string(index) + "]." + key, unit, lower, upper});
+    candidate_.nested.push_back(nested);
     return *this;
   }
   // A key of the muscle's section `section` set to `value` in the scenario the candidate builds
@@ -123,17 +133,18 @@ class CandidateBuilder {
     candidate_.overrides.push_back(base_.muscle + "." + section + "=" + flow_text(changed));
     return *this;
   }
-  // A parameter of the base model the refit frees.
-  CandidateBuilder& free_base(const std::string& path, double lower, double upper,
+  // A parameter of the base model the refit frees, starting at `nested`.
+  CandidateBuilder& free_base(const std::string& path, double nested, double lower, double upper,
                               const std::string& unit) {
     candidate_.parameters.push_back({path, unit, lower, upper});
+    candidate_.nested.push_back(nested);
     return *this;
   }
   EffectCandidate build() {
-    if (section_.size() > 0) {
+    if (!sections_.empty()) {
       YAML::Node effects =
           base_.effects ? YAML::Clone(base_.effects) : YAML::Node(YAML::NodeType::Sequence);
-      effects.push_back(section_);
+      for (const auto& section : sections_) effects.push_back(section);
       candidate_.overrides.push_back(base_.muscle + ".effects=" + flow_text(effects));
     }
     return candidate_;
@@ -142,8 +153,16 @@ class CandidateBuilder {
  private:
   const BaseModel& base_;
   EffectCandidate candidate_;
-  YAML::Node section_;
+  std::vector<YAML::Node> sections_;
 };
+
+// n values from `low` to `high`, evenly spaced in their logarithm.
+std::vector<double> log_grid(double low, double high, int n) {
+  std::vector<double> grid;
+  for (int i = 0; i < n; ++i)
+    grid.push_back(low * std::pow(high / low, n > 1 ? static_cast<double>(i) / (n - 1) : 0.0));
+  return grid;
+}
 
 }  // namespace
 
@@ -160,11 +179,16 @@ std::string only_muscle(const System& system) {
 }
 
 const std::vector<std::string>& effect_names() {
-  static const std::vector<std::string> names = {
-      "slow_relaxation",        "hysteresis",
-      "nonlinear_convection",   "thermal_lag",
-      "nonlinear_stiffness",    "temperature_dependent_stiffness",
-      "inductance_temperature", "viscoelastic_relaxation"};
+  static const std::vector<std::string> names = {"slow_relaxation",
+                                                 "hysteresis",
+                                                 "nonlinear_convection",
+                                                 "thermal_lag",
+                                                 "nonlinear_stiffness",
+                                                 "temperature_dependent_stiffness",
+                                                 "inductance_temperature",
+                                                 "viscoelastic_relaxation",
+                                                 "ratchet",
+                                                 "heating_dependent_convection"};
   return names;
 }
 
@@ -175,76 +199,123 @@ Candidates effect_candidates(const Scenario& scenario, const Context& fitted,
   const auto skip = [&](const std::string& name, const std::string& reason) {
     result.skipped.push_back({name, reason});
   };
+  const auto add = [&](CandidateBuilder& builder) { result.candidates.push_back(builder.build()); };
   const double k1 = base.k1, k2 = base.k2, c = base.heat_capacity, ha = base.conductance;
-  // A further viscoelastic branch, told apart by its relaxation time: minutes (warm-up) for
-  // slow_relaxation, seconds (the SLS's own order) for viscoelastic_relaxation; the two ranges
-  // meet at 30 s and do not overlap.
-  result.candidates.push_back(
-      CandidateBuilder(base, "slow_relaxation",
-                       "a second viscoelastic branch with a long time constant (warm-up)",
-                       "drift; low-frequency residual power")
-          .attach("maxwell_branch")
-          .free("stiffness", 0.02 * k2, 0.005 * k2, 3.0 * k2, "N/m")
-          .free("time_constant", 200.0, 30.0, 3000.0, "s")
-          .build());
-  result.candidates.push_back(
-      CandidateBuilder(
-          base, "hysteresis", "rate-independent hysteresis in the force (Dahl)",
-          "residual against the direction of the last motion; loop area flat in frequency")
-          .attach("hysteresis")
-          .free("stiffness", k1, 0.05 * k1, 50.0 * k1, "N/m")
-          .free("force", 2e-4, 5e-5, 5e-2, "N")
-          .build());
+  // The measured deflection range scales hysteresis radii and knees (2 cm without one).
+  const double range = base.deflection ? base.deflection->second - base.deflection->first : 0.02;
+
+  // Further viscoelastic branches (a Prony series), told apart by their relaxation times:
+  // minutes (warm-up) for slow_relaxation, seconds (the SLS's own order) for
+  // viscoelastic_relaxation; the ranges meet at 30 s and do not overlap. Zero stiffness: none.
+  const std::string slow = "a further viscoelastic branch with a long time constant (warm-up)";
+  const std::string drift = "drift; low-frequency residual power";
+  CandidateBuilder one_slow(base, "slow_relaxation", "one Maxwell branch", 1, slow, drift);
+  one_slow.attach("maxwell_branch")
+      .free("stiffness", 0.0, 0.0, 3.0 * k2, "N/m")
+      .free("time_constant", 200.0, 30.0, 3000.0, "s");
+  add(one_slow);
+  CandidateBuilder two_slow(base, "slow_relaxation", "two Maxwell branches (Prony series)", 2, slow,
+                            drift);
+  two_slow.attach("maxwell_branch")
+      .free("stiffness", 0.0, 0.0, 3.0 * k2, "N/m")
+      .free("time_constant", 100.0, 30.0, 300.0, "s")
+      .attach("maxwell_branch")
+      .free("stiffness", 0.0, 0.0, 3.0 * k2, "N/m")
+      .free("time_constant", 1000.0, 300.0, 3000.0, "s");
+  add(two_slow);
+
+  // Rate-independent hysteresis: stop operators weighted by non-negative stiffnesses (zero: no
+  // hysteresis), one with a free radius (Dahl's element) or a Prandtl-Ishlinskii operator on a
+  // grid of radii over the measured range.
+  const std::string hysteresis = "rate-independent hysteresis in the force";
+  const std::string direction =
+      "residual against the direction of the last motion; loop area flat in frequency";
+  CandidateBuilder dahl(base, "hysteresis", "one Dahl element, free radius", 1, hysteresis,
+                        direction);
+  dahl.attach("hysteresis")
+      .free("stiffness", 0.0, 0.0, 50.0 * k1, "N/m")
+      .free("radius", 0.02 * range, 0.002 * range, 0.5 * range, "m");
+  add(dahl);
+  const auto radii = log_grid(0.02 * range, 0.3 * range, 4);
+  CandidateBuilder play(base, "hysteresis", "Prandtl-Ishlinskii operator, 4 radii", 4, hysteresis,
+                        direction);
+  for (const double radius : radii)
+    play.attach("hysteresis")
+        .fixed("radius", radius, "m")
+        .free("stiffness", 0.0, 0.0, 20.0 * k1, "N/m");
+  add(play);
+
   if (!base.temperature || !(c > 0.0)) {
     for (const char* name :
-         {"nonlinear_convection", "thermal_lag", "temperature_dependent_stiffness"}) {
+         {"nonlinear_convection", "thermal_lag", "temperature_dependent_stiffness", "ratchet",
+          "heating_dependent_convection"}) {
       skip(name,
            "the muscle reports no temperature (give the reduced form's force_per_kelvin, or use "
            "the physical form)");
     }
   } else {
-    result.candidates.push_back(
-        CandidateBuilder(base, "nonlinear_convection",
-                         "heat loss growing faster than linearly with the temperature rise",
-                         "residual against temperature; against power at steady heating")
-            .attach("free_convection")
-            .free("conductance", 0.01 * ha, 0.001 * ha, 3.0 * ha, "W/K")
-            .fixed("reference_difference", 50.0, "K")
-            .build());
-    result.candidates.push_back(
-        CandidateBuilder(base, "thermal_lag", "heater wire and polymer as two thermal nodes",
-                         "residual cross-correlated with power at short lags")
-            .attach("thermal_lag")
-            // Starting as a wire that follows at once (tau_w = C_w / G_w of 1e-4 C / hA), so that
-            // the augmented model starts where the base model ended.
-            .free("heat_capacity", 0.01 * c, 0.001 * c, c, "J/K")
-            .free("conductance", 100.0 * ha, 0.5 * ha, 1000.0 * ha, "W/K")
-            .build());
+    CandidateBuilder convection(base, "nonlinear_convection",
+                                "G dT_ref (dT/dT_ref)^n, free exponent", 1,
+                                "heat loss growing faster than linearly with the temperature rise",
+                                "residual against temperature; against power at steady heating");
+    convection.attach("free_convection")
+        .free("conductance", 0.0, 0.0, 3.0 * ha, "W/K")
+        .fixed("reference_difference", 50.0, "K")
+        .free("exponent", 1.25, 1.0, 2.0, "1");
+    add(convection);
+    CandidateBuilder lag(base, "thermal_lag", "a share of the power through a first-order lag", 1,
+                         "the heat reaches the polymer late (heater wire, coating)",
+                         "residual cross-correlated with power at short lags");
+    lag.attach("heating_lag")
+        .free("share", 0.0, 0.0, 1.0, "1")
+        .free("time_constant", 2.0, 0.1, 30.0, "s");
+    add(lag);
+    // An irreversible loss of force above a threshold temperature, up to some k1 x range per
+    // 1000 K s.
+    CandidateBuilder ratchet(base, "ratchet", "dF/dt = -g max(0, T - T_th), kept on cooling", 1,
+                             "the rest length creeps irreversibly with each heating cycle",
+                             "drift that steps down with each heating; residual against the "
+                             "heat received");
+    ratchet.attach("ratchet")
+        .free("rate", 0.0, 0.0, k1 * range / 1000.0, "N/(K*s)")
+        .free("threshold", base.ambient + 10.0, base.ambient, base.ambient + 100.0, "K");
+    add(ratchet);
+    if (base.power_peak > 0.0) {
+      CandidateBuilder fan(base, "heating_dependent_convection", "Q = G_P (P / P_peak) (T - T_amb)",
+                           1,
+                           "the heat-transfer coefficient rises while the heating runs (a fan "
+                           "or heat gun)",
+                           "residual against power times the temperature rise");
+      fan.attach("heating_convection")
+          .free("conductance", 0.0, 0.0, 3.0 * ha, "W/K")
+          .fixed("reference_power", base.power_peak, "W");
+      add(fan);
+    } else {
+      skip("heating_dependent_convection", "the measurement has no power channel");
+    }
   }
   if (base.deflection) {
     const auto [low, high] = *base.deflection;
-    const double range = high - low;
-    result.candidates.push_back(
-        CandidateBuilder(base, "nonlinear_stiffness",
-                         "stiffness that depends on deflection (coil contact, preload knee)",
-                         "residual against deflection")
-            .attach("nonlinear_stiffness")
-            .free("stiffness", 0.02 * k1, -0.9 * k1, 5.0 * k1, "N/m")
-            .free("knee_deflection", 0.5 * (low + high), low, high, "m")
-            .free("knee_width", 0.1 * range, 0.01 * range, 0.5 * range, "m")
-            .build());
+    CandidateBuilder knee(base, "nonlinear_stiffness", "a softplus knee, free sharpness", 1,
+                          "stiffness that depends on deflection (coil contact, preload knee)",
+                          "residual against deflection");
+    knee.attach("nonlinear_stiffness")
+        .free("stiffness", 0.0, -0.9 * k1, 5.0 * k1, "N/m")
+        .free("knee_deflection", 0.5 * (low + high), low, high, "m")
+        .free("knee_width", 0.1 * range, 0.01 * range, 0.5 * range, "m");
+    add(knee);
   } else {
     skip("nonlinear_stiffness", "the measurement has no deflection channel to place a knee in");
   }
   if (base.temperature && c > 0.0) {
-    result.candidates.push_back(CandidateBuilder(base, "temperature_dependent_stiffness",
-                                                 "stiffness that changes with temperature",
-                                                 "residual against temperature times deflection")
-                                    .attach("thermal_softening")
-                                    .fixed("reference_stiffness", 0.5 * k1, "N/m")
-                                    .fixed("reference_temperature", base.ambient, "K")
-                                    .free("temperature_coefficient", 0.0, -0.03, 0.03, "1/K")
-                                    .build());
+    CandidateBuilder softening(
+        base, "temperature_dependent_stiffness", "s_ref (1 + alpha (T - T_ref)) in parallel", 1,
+        "stiffness that changes with temperature", "residual against temperature times deflection");
+    softening.attach("thermal_softening")
+        .free("reference_stiffness", 0.0, 0.0, k1, "N/m")
+        .free("temperature_coefficient", 0.0, -0.03, 0.03, "1/K")
+        .fixed("reference_temperature", base.ambient, "K");
+    add(softening);
   }
   if (!base.coil_output) {
     skip("inductance_temperature", "no output of the coil (inductance or L*) is compared");
@@ -253,26 +324,25 @@ Candidates effect_candidates(const Scenario& scenario, const Context& fitted,
     skip("inductance_temperature", "the muscle's coil has no temperature term to free");
   } else {
     // The impedance law's own lambda_T (T - T_ref) term, zero in the base model: a coil built
-    // without it has no temperature input, so the candidate starts it off zero.
+    // without it has no temperature input, so the scenario gives it a value and the refit starts
+    // it at zero.
     const double scale = base.lambda_scale > 0.0 ? base.lambda_scale : 1.0;
     const auto index = *scenario.system->parameter_index(base.lambda_path);
     const std::string unit =
         scenario.system->parameters()[static_cast<std::size_t>(index)].declaration.unit;
-    result.candidates.push_back(
-        CandidateBuilder(base, "inductance_temperature",
-                         "the inductance measure depends on temperature",
-                         "L* residual against temperature")
-            .set_in_section("inductance", base.inductance, "lambda_T", 1e-5 * scale, unit)
-            .free_base(base.lambda_path, -0.01 * scale, 0.01 * scale, unit)
-            .build());
+    CandidateBuilder coil(base, "inductance_temperature", "lambda_T (T - T_ref)", 1,
+                          "the inductance measure depends on temperature",
+                          "L* residual against temperature");
+    coil.set_in_section("inductance", base.inductance, "lambda_T", 1e-5 * scale, unit)
+        .free_base(base.lambda_path, 0.0, -0.01 * scale, 0.01 * scale, unit);
+    add(coil);
   }
-  result.candidates.push_back(CandidateBuilder(base, "viscoelastic_relaxation",
-                                               "an SLS branch, for base models that lack one",
-                                               "residual against dx/dt")
-                                  .attach("maxwell_branch")
-                                  .free("stiffness", 0.02 * k2, 0.005 * k2, 5.0 * k2, "N/m")
-                                  .free("time_constant", 5.0, 0.05, 30.0, "s")
-                                  .build());
+  CandidateBuilder branch(base, "viscoelastic_relaxation", "one Maxwell branch", 1,
+                          "an SLS branch, for base models that lack one", "residual against dx/dt");
+  branch.attach("maxwell_branch")
+      .free("stiffness", 0.0, 0.0, 5.0 * k2, "N/m")
+      .free("time_constant", 5.0, 0.05, 30.0, "s");
+  add(branch);
   return result;
 }
 

@@ -10,21 +10,26 @@
 
 namespace tcpmsim::fit {
 
-// A candidate of `tcpmsim discover`: a named physical effect the base model lacks, as the
-// scenario overrides that attach it to the muscle (at starting values scaled by the base
-// model as fitted, small enough that the augmented model starts close to the base model's fit)
-// and the parameters a refit frees besides the base model's, with bounds.
+// A candidate of `tcpmsim discover`: one member of a family of effects the base model lacks
+// (hysteresis as one Dahl element or as a Prandtl-Ishlinskii operator of several radii), as the
+// scenario overrides that attach it to the muscle and the parameters a refit frees besides the
+// base model's, with bounds. Every member nests the base model: at its `nested` values (zero
+// size: no weight, no stiffness, no share) the augmented model is the base model, so a refit
+// that starts there can only end at or below the base fit's cost.
 struct EffectCandidate {
-  std::string name;                      // "slow_relaxation"
+  std::string name;                      // the family, which a verdict names: "hysteresis"
+  std::string member;                    // the form within it: "Dahl element, free radius"
+  int order = 1;                         // elements or branches of that form
   std::string description;               // what it models
   std::string signature;                 // the diagnostic that should give it away
   std::vector<std::string> overrides;    // attach it ("muscle.effects=[...]"), or none
   std::vector<FitParameter> parameters;  // freed by the refit, in the augmented model
+  std::vector<double> nested;            // per parameter: where the member is the base model
 };
 
-// The eight effects of the catalogue, in its order: slow_relaxation, hysteresis,
+// The ten families of the catalogue, in its order: slow_relaxation, hysteresis,
 // nonlinear_convection, thermal_lag, nonlinear_stiffness, temperature_dependent_stiffness,
-// inductance_temperature, viscoelastic_relaxation.
+// inductance_temperature, viscoelastic_relaxation, ratchet, heating_dependent_convection.
 const std::vector<std::string>& effect_names();
 
 // The one muscle of a base model (its instance name); std::invalid_argument if it has none or
@@ -39,7 +44,7 @@ struct SkippedCandidate {
 };
 
 struct Candidates {
-  std::vector<EffectCandidate> candidates;
+  std::vector<EffectCandidate> candidates;  // every member of every family that attaches
   std::vector<SkippedCandidate> skipped;
 };
 

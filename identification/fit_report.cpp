@@ -75,7 +75,10 @@ std::string fit_summary(const FitSpec& spec, const FitResult& result) {
     out << "  " << std::setw(36) << estimate.path << std::setw(16)
         << number_text(estimate.initial, 6) << std::setw(16) << number_text(estimate.value, 6)
         << std::setw(14)
-        << (estimate.identifiable ? number_text(estimate.standard_error, 3) : "unidentified")
+        << (estimate.identifiable ? number_text(estimate.standard_error, 3)
+            : std::isfinite(estimate.standard_error)
+                ? number_text(estimate.standard_error, 3) + " (poor)"
+                : std::string("unidentified"))
         << estimate.unit << "\n";
   }
   for (const auto& problem : result.identifiability) out << "  not identified: " << problem << "\n";

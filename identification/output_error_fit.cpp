@@ -242,8 +242,9 @@ std::vector<std::vector<double>> starting_points(const FitProblem& problem,
                                           std::vector<double>(n));
   for (std::size_t j = 0; j < n; ++j) {
     const auto& parameter = problem.parameters[j];
-    points[0][j] =
-        (context.parameter(parameter.path) - parameter.lower) / (parameter.upper - parameter.lower);
+    const double first =
+        settings.start.empty() ? context.parameter(parameter.path) : settings.start.at(j);
+    points[0][j] = (first - parameter.lower) / (parameter.upper - parameter.lower);
     if (settings.starts == 0 || j < settings.screened_from) {
       for (std::size_t s = 1; s < points.size(); ++s) points[s][j] = points[0][j];
       continue;
@@ -354,6 +355,22 @@ void add_statistics(FitResult& result, const Eigen::MatrixXd& jacobian) {
       }
     }
   }
+  // What the summary calls not identified, the estimates say too: a parameter in a correlated
+  // pair, or whose standard error exceeds its estimate, keeps its (large) standard error but is
+  // not identifiable.
+  for (Eigen::Index j = 0; j < n; ++j) {
+    auto& estimate = result.estimates[static_cast<std::size_t>(j)];
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double rho = result.correlation(i, j);
+      if (i != j && std::isfinite(rho) && std::abs(rho) > 0.99) estimate.identifiable = false;
+    }
+    if (estimate.identifiable && estimate.standard_error > std::abs(estimate.value)) {
+      estimate.identifiable = false;
+      result.identifiability.push_back(estimate.path + ": its standard error " +
+                                       number_text(estimate.standard_error, 3) +
+                                       " exceeds its estimate " + number_text(estimate.value, 3));
+    }
+  }
 }
 
 // Whether the fit uses forward sensitivities, and what the report says of its gradient.
@@ -404,6 +421,7 @@ FitResult fit_model(const FitProblem& problem, const FitSettings& settings) {
 
   FitResult result;
   result.cost = best.cost;
+  result.start_cost = costs[0];
   result.iterations = iterations;
   result.termination = best.termination;
   result.gradient = gradient;
@@ -411,8 +429,9 @@ FitResult fit_model(const FitProblem& problem, const FitSettings& settings) {
   const Context context = problem.model->make_context();
   for (std::size_t j = 0; j < problem.parameters.size(); ++j) {
     const auto& parameter = problem.parameters[j];
-    result.estimates.push_back(
-        {parameter.path, parameter.unit, context.parameter(parameter.path), values[j], kNaN, true});
+    const double initial =
+        settings.start.empty() ? context.parameter(parameter.path) : settings.start[j];
+    result.estimates.push_back({parameter.path, parameter.unit, initial, values[j], kNaN, true});
   }
   // The Jacobian at the estimate, per SI unit of each parameter.
   const SimulationCost cost(problem, residuals, settings, sensitivities);

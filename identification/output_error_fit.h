@@ -24,6 +24,10 @@ struct FitSettings {
   // The multistart draws the parameters from this index on; those before it start at the
   // model's values in every point (discover's candidates: the base model as fitted).
   std::size_t screened_from = 0;
+  // Where the fit starts (SI, one value per parameter): the first point, and the value of every
+  // parameter before screened_from in each start. Empty: the model's own values. (discover's
+  // candidates start where the effect has zero size, so that each is the base model there.)
+  std::vector<double> start;
   std::uint64_t seed = 1;
   int threads = 2;                // simulations at once (finite differences, screening)
   double difference_step = 1e-4;  // of each parameter's bound range, for forward differences
@@ -33,7 +37,9 @@ struct FitSettings {
   Gradient gradient = Gradient::automatic;
 };
 
-// One parameter's estimate. standard_error is NaN when the data do not identify it.
+// One parameter's estimate. standard_error is NaN when the data do not fix it at all (outside
+// the Jacobian's rank); a parameter correlated above 0.99 with another, or whose standard error
+// exceeds its estimate, keeps its standard error but is not identifiable either.
 struct ParameterEstimate {
   std::string path;
   std::string unit;
@@ -60,6 +66,7 @@ struct FitResult {
   // change the outputs (rank 5 of 6)".
   std::vector<std::string> identifiability;
   double cost = 0.0;               // 1/2 sum of squared weighted residuals at the estimate
+  double start_cost = 0.0;         // the same at the first starting point
   double residual_variance = 0.0;  // 2 cost / (samples - parameters)
   int iterations = 0;
   int simulations = 0;

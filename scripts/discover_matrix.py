@@ -160,12 +160,14 @@ def one_case(arguments, inputs, effect, noise_mn, seed):
                os.path.join(directory, "discover"), "-q", "-j", str(arguments.threads)]
     if not arguments.plots:
         command.append("--no-plots")
-    if run(command, log) != 0:
+    # 0: an effect named, 10: none, 11: unexplained; anything else failed.
+    if run(command, log) not in (0, 10, 11):
         return {"case": name, "effect": effect, "form": form, "error": "discover failed: see " + log}
     with open(os.path.join(directory, "discover", "discovery.json"), encoding="utf-8") as file:
         found = json.load(file)
     result = {"case": name, "effect": effect, "form": form, "noise_mN": noise_mn, "seed": seed,
               "verdict": found["verdict"], "gap_shrink": found["gap_shrink"],
+              "gap_closed": found.get("gap_closed"), "member": found.get("member"),
               "seconds": found["seconds"], "definition": definition,
               "ranking": [(c["effect"], c.get("delta_bic")) for c in found["ranking"]]}
     with open(finished, "w", encoding="utf-8") as file:

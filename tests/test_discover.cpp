@@ -11,6 +11,7 @@
 #include "identification/bench_measurement.h"
 #include "identification/discovery.h"
 #include "identification/discovery_report.h"
+#include "identification/noise_floor.h"
 #include "sim/random_stream.h"
 #include "sim/run.h"
 #include "tests/support/test_support.h"
@@ -24,11 +25,12 @@ const std::string kBase = "configs/discover/ch7_base.yaml";
 
 // A measurement of the base model with `hidden` overrides (the effect it holds), read by the
 // chapter-7 bench: load cell 0.5 mN resolution and 1 mN noise, L* jitter and spikes.
-std::string measurement(const std::string& name, std::vector<std::string> hidden) {
+std::string measurement(const std::string& name, std::vector<std::string> hidden,
+                        const std::string& duration = "300 s") {
   // The protocol cut to 200 s of multisines to identify and 100 s of random steps to validate,
   // to keep the suite quick; the whole protocol is scripts/discover_matrix.py's.
-  hidden.push_back("measurement.file=" + protocol_record("300 s"));
-  hidden.push_back("scenario.duration=300 s");
+  hidden.push_back("measurement.file=" + protocol_record(duration));
+  hidden.push_back("scenario.duration=" + duration);
   const Scenario truth = load_scenario(source_path(kBase), hidden, shared_units());
   const auto bench =
       fit::load_bench(source_path("configs/discover/ch7_bench.yaml"), truth, shared_units());
@@ -171,8 +173,130 @@ TEST_CASE("Data without a hidden effect give the verdict none") {
   const fit::Discovery found = fit::discover(setup);
   INFO(fit::discovery_summary(found));
   CHECK(found.verdict == "none");
-  // The base model fits to the noise, and its residual is white.
+  CHECK(found.kind == fit::VerdictKind::none);
+  // The base model fits to the noise, and its residual is white: at the floor read from the
+  // data, the load cell's sqrt(1 + 0.5^2/12) = 1.01 mN.
+  CHECK(found.at_noise == std::vector<bool>{true});
+  CHECK(found.setup.floor[0] == Approx(1.01e-3).epsilon(0.05));
   CHECK(found.base.validation.rmse[0] < 1.2e-3);
   CHECK(found.diagnostics.outputs[0].whiteness.p_value > 1e-3);
   for (const auto& candidate : found.candidates) CHECK_FALSE(candidate.significant);
+}
+
+TEST_CASE("The noise floor is read from the data: white noise under a smooth signal and steps") {
+  const std::size_t n = 8000;
+  RandomStream stream(5, "floor");
+  std::vector<double> values(n), deflection(n), grid(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = static_cast<double>(i) / 16.0;
+    // A force under a multisine and deflection steps every 5 s (the step moves it at once).
+    deflection[i] = 0.01 * static_cast<double>((i / 80) % 3);
+    values[i] = 0.1 * std::sin(2 * std::numbers::pi * 0.08 * t) + 13.5 * deflection[i] +
+                2e-3 * stream.normal();
+    grid[i] =
+        std::round((0.1 * std::sin(2 * std::numbers::pi * 0.08 * t) + 1e-4 * stream.normal()) /
+                   5e-4) *
+        5e-4;
+  }
+  // Where the input jumps, the force's differences hold its response: left out, the floor is the
+  // noise's; left in, they bias it up.
+  const auto steps = fit::steps_in_inputs({&deflection}, n);
+  CHECK(fit::difference_noise_floor(values, steps) == Approx(2e-3).epsilon(0.03));
+  CHECK(fit::difference_noise_floor(values) > fit::difference_noise_floor(values, steps));
+  // Noise finer than the grid: at least the grid's rounding, q / sqrt(12).
+  CHECK(fit::difference_noise_floor(grid) >= 5e-4 / std::sqrt(12.0));
+  CHECK(fit::difference_noise_floor(grid) < 2e-4);
+  CHECK(std::isnan(fit::difference_noise_floor({1.0, 2.0})));
+}
+
+TEST_CASE("Inputs on a grid or held between steps do not shield output spikes at smooth peaks") {
+  // The chapter-7 bench: a multisine deflection read on a 0.02 mm grid, a power held between
+  // steps, and L* with spikes beside the multisine's peaks; every spike goes.
+  const std::size_t n = 6400;
+  RandomStream stream(8, "grid");
+  std::vector<double> time(n), deflection(n), power(n), measure(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    time[i] = static_cast<double>(i) / 16.0;
+    deflection[i] =
+        std::round((0.02 + 0.01 * std::sin(2 * std::numbers::pi * 0.05 * time[i])) / 2e-5) * 2e-5;
+    power[i] = 0.5 + static_cast<double>((i / 300) % 4);
+    measure[i] = 2.81e-3 / (deflection[i] + 28.8e-3) + 0.433 + 5e-4 * stream.normal();
+  }
+  std::vector<std::size_t> spikes;
+  for (std::size_t i = 80; i + 80 < n; i += 320) {  // at every other peak of the multisine
+    spikes.push_back(i);
+    measure[i] += 0.02;
+  }
+  const MeasuredData data("bench", time,
+                          {{"inductance_measure", "1", "1", measure},
+                           {"deflection", "m", "m", deflection},
+                           {"power", "W", "W", power}});
+  std::vector<std::size_t> replaced;
+  const auto cleaned =
+      fit::without_spikes(data, {"inductance_measure"}, {"power", "deflection"}, replaced);
+  CHECK(replaced == std::vector<std::size_t>{spikes.size()});
+  for (std::size_t i : spikes)
+    CHECK(std::abs(cleaned.find("inductance_measure")->values[i] - measure[i] + 0.02) < 3e-3);
+}
+
+TEST_CASE("Every candidate nests the base model: its refit ends at or below the base fit's cost") {
+  // Each candidate starts from the base fit with its effect at zero size, where it is the base
+  // model; its cost there equals the base fit's within the solver's tolerance (more states change
+  // CVODE's steps: at rtol 1e-6 by some 0.1 of a cost of 640, below the half unit that moves the
+  // BIC by one), and its fit only goes down from there.
+  for (const auto& [name, hidden] : std::vector<std::pair<std::string, std::vector<std::string>>>{
+           {"nest_null", {}},
+           {"nest_play",
+            {"muscle.effects=[{type: hysteresis, name: a, stiffness: 4 N/m, radius: 0.8 mm}, "
+             "{type: hysteresis, name: b, stiffness: 1.5 N/m, radius: 4 mm}]"}}}) {
+    const std::string data = measurement(name, hidden, "100 s");
+    fit::DiscoverRequest all = request(data, {});
+    all.validate_from = 70.0;
+    all.starts = 2;
+    const fit::Discovery found = fit::discover(fit::setup_discovery(all, shared_units()));
+    INFO(name << "\n" << fit::discovery_summary(found));
+    CHECK(found.candidates.size() >= 8);
+    for (const auto& candidate : found.candidates) {
+      INFO(candidate.name << " [" << candidate.member << "]: " << candidate.reason);
+      REQUIRE(candidate.status == "fitted");
+      CHECK(std::abs(candidate.nested_cost - found.base.cost) < 0.5);
+      CHECK(candidate.result.cost <= candidate.nested_cost * (1 + 1e-9));
+      CHECK(candidate.result.cost < found.base.cost + 0.5);
+      // So its BIC can rise by no more than the parameters it adds cost.
+      const double n = static_cast<double>(found.base.identification.samples);
+      const auto added = candidate.result.estimates.size() - found.base.estimates.size();
+      CHECK(candidate.delta_bic < static_cast<double>(added) * std::log(n) + 1.0);
+    }
+  }
+}
+
+TEST_CASE("A residual no candidate explains is unexplained, never none, and --set reaches it") {
+  // Hysteresis in the data, but only a thermal candidate tried: the base model misses by several
+  // times the floor, the candidate does not help, and the verdict says so.
+  const std::string data = measurement(
+      "unexplained", {"muscle.effects=[{type: hysteresis, stiffness: 50 N/m, force: 6 mN}]"});
+  fit::DiscoverRequest thermal = request(data, {"thermal_lag"});
+  thermal.overrides = {"muscle.inductance.lambda_0=0.5"};
+  const fit::Discovery found = fit::discover(fit::setup_discovery(thermal, shared_units()));
+  INFO(fit::discovery_summary(found));
+  CHECK(found.verdict == "unexplained");
+  CHECK(found.kind == fit::VerdictKind::unexplained);
+  CHECK(found.at_noise == std::vector<bool>{false});
+  CHECK(found.base.validation.rmse[0] > 2 * found.setup.floor[0]);
+  CHECK(found.gap_closed == 0.0);
+  // The report ranks what the residual follows: the direction of the last motion among the
+  // strongest.
+  const auto ranked = fit::ranked_signatures(found.diagnostics, 0);
+  REQUIRE(ranked.size() >= 3);
+  bool direction = false;
+  for (std::size_t i = 0; i < 3; ++i)
+    direction = direction || ranked[i].what.find("last direction of motion") != std::string::npos;
+  CHECK(direction);
+  CHECK(fit::discovery_report(found).find("**unexplained**") != std::string::npos);
+  CHECK(fit::discovery_json(found).find("\"verdict_kind\": \"unexplained\"") != std::string::npos);
+  // The model's --set reaches every candidate's refit, not the base fit alone.
+  for (const auto& candidate : found.candidates) {
+    const Context context = candidate.spec.problem.model->make_context();
+    CHECK(context.parameter("muscle.inductance.lambda_0") == 0.5);
+  }
 }

@@ -188,6 +188,23 @@ expect 3 "discover on a bad measurement is a data-file error" -- "$tcpmsim" disc
   --model "$discover/ch7_base.yaml" --data "$work/bad.csv" --inputs power,deflection \
   --outputs force --validate-from 0.5 --out "$work/discover"
 [[ ! -e $work/discover ]] && echo "ok: nothing written on a discover error" || { echo "FAIL: a discover directory after an error"; failures=$((failures + 1)); }
+# A verdict has its exit code (0 an effect, 10 none, 11 unexplained), and a picture that cannot
+# be drawn is a warning: an installed copy whose plot tool fails still exits with the verdict.
+mkdir -p "$work/installed"
+cp "$tcpmsim" "$work/installed/tcpmsim"
+printf '#!/bin/sh\necho "no plotting here" >&2\nexit 1\n' >"$work/installed/tcpmsim-plot"
+chmod +x "$work/installed/tcpmsim-plot"
+expect 10 "discover on data the base model fits to the noise says none (exit 10)" -- \
+  "$work/installed/tcpmsim" discover --model "$discover/ch7_base.yaml" --data "$work/measured.csv" \
+  --inputs power,deflection --outputs force --validate-from 400 --effects viscoelastic_relaxation \
+  --starts 2 --out "$work/discover_none"
+contains "$work/out" "verdict: none (the base model fits to the noise floor)" "the verdict is printed"
+contains "$work/err" "warning: the plots of $work/discover_none could not be drawn" "a failed picture is a warning"
+contains "$work/discover_none/discovery.json" '"verdict_kind": "none"' "discovery.json carries the verdict's kind"
+expect 2 "discover --noise names an output it compares" -- "$tcpmsim" discover \
+  --model "$discover/ch7_base.yaml" --data "$work/measured.csv" --inputs power,deflection \
+  --outputs force --validate-from 400 --noise torque=2mN --out "$work/discover"
+contains "$work/err" "--noise torque=2mN: expected OUTPUT=VALUE UNIT for a compared output" "the --noise error says what it expects"
 
 # analyze: any record's step metrics and frequency response; a request the record cannot serve
 # is a usage error naming what it has.

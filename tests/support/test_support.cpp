@@ -75,6 +75,15 @@ Trace simulate(const Scenario& scenario) {
   return trace;
 }
 
+Trace simulate(const Scenario& scenario, Context& context) {
+  MemorySink sink(*scenario.system);
+  Trace trace;
+  trace.statistics = integrate(scenario, context, sink);
+  trace.time = std::move(sink.time);
+  trace.channels = std::move(sink.channels);
+  return trace;
+}
+
 Trace simulate(const std::string& yaml, const std::vector<std::string>& overrides) {
   Scenario scenario = scenario_from_text(yaml, overrides);
   return simulate(scenario);

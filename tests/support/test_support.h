@@ -26,6 +26,8 @@ std::shared_ptr<const UnitSystem> shared_units();
 Scenario scenario_from_text(const std::string& yaml,
                             const std::vector<std::string>& overrides = {});
 Trace simulate(const Scenario& scenario);
+// A run of `scenario` in `context` (parameters set in it).
+Trace simulate(const Scenario& scenario, Context& context);
 // The ConfigError message building `yaml` gives, or "no error".
 std::string config_error(const std::string& yaml, const std::vector<std::string>& overrides = {});
 Trace simulate(const std::string& yaml, const std::vector<std::string>& overrides = {});

@@ -15,6 +15,8 @@ SIGNATURE_FEATURE = {
     "inductance_temperature": "temperature rise",
     "nonlinear_stiffness": "deflection^2",
     "temperature_dependent_stiffness": "temperature rise x deflection",
+    "ratchet": "temperature rise",
+    "heating_dependent_convection": "power",
 }
 
 
@@ -45,9 +47,10 @@ def plot_residuals(handle, path, summary, output):
         axis.set_ylabel(f"{channel} residual [{unit}]")
         axis.legend(loc="upper left", fontsize=8)
     axes[-1, 0].set_xlabel("time [s]")
-    shrink = summary.get("gap_shrink", 0.0)
+    closed = summary.get("gap_closed")
     axes[0, 0].set_title(f"measured - simulated; verdict: {summary['verdict']}"
-                         + (f" (validation gap shrinks {100 * shrink:.0f} %)" if effect else ""))
+                         + (f" ({100 * closed:.0f} % of the gap above the noise floor closed)"
+                            if effect and closed is not None else ""))
     save(figure, output)
 
 
