@@ -48,6 +48,9 @@ def main():
               f"{slowest['effect']} [{slowest['member']}] {slowest['seconds']:.1f} s "
               f"({slowest['simulations']} runs); the candidates' fits {total:.1f} s in all, "
               f"{found['baseline']['candidate_rounds']} round(s)")
+        for c in found["ranking"]:
+            print(f"    {c['effect']} [{c['member']}]: {c.get('seconds', 0.0):.1f} s, "
+                  f"{c.get('simulations', 0)} runs, {c.get('iterations', 0)} iterations")
     finally:
         shutil.rmtree(work)
 

@@ -149,7 +149,9 @@ CandidateOutcome fit_candidate(const DiscoverSetup& setup, const FitResult& base
     auto& settings = outcome.spec.settings;
     settings.start = values_of(base);
     settings.start.insert(settings.start.end(), candidate.nested.begin(), candidate.nested.end());
-    settings.threads = 1;  // the candidates run in parallel
+    // The candidates run in parallel; each on one thread, so that its fit (which splits its
+    // sensitivities among its threads) is the same whatever -j is.
+    settings.threads = 1;
     settings.screened_from = base.estimates.size();
     settings.starts = std::min(settings.starts, 4);
     settings.refine = 1;
@@ -205,6 +207,33 @@ std::vector<CandidateOutcome> fit_candidates(const DiscoverSetup& setup, const B
     simulations += outcome.result.simulations;
     if (outcome.status == "fitted") score(outcome, baseline, noise, measured, setup);
   }
+  return outcomes;
+}
+
+// The catalogue's candidates refitted in two waves: every family's simplest members (order 1),
+// then its higher orders only where a simplest member lowered the BIC by more than the threshold
+// (forward selection of the model order: a Prandtl-Ishlinskii operator is tried where one Dahl
+// element already explains something).
+std::vector<CandidateOutcome> fit_catalogue(const DiscoverSetup& setup, const Baseline& baseline,
+                                            const std::vector<double>& noise,
+                                            const std::vector<std::vector<double>>& measured,
+                                            const std::vector<EffectCandidate>& tried,
+                                            int& simulations) {
+  std::vector<EffectCandidate> simplest, higher;
+  for (const auto& candidate : tried)
+    (candidate.order == 1 ? simplest : higher).push_back(candidate);
+  auto outcomes = fit_candidates(setup, baseline, noise, measured, simplest, simulations);
+  std::vector<EffectCandidate> promising;
+  for (const auto& candidate : higher) {
+    const bool evidence = std::any_of(outcomes.begin(), outcomes.end(), [&](const auto& o) {
+      return o.name == candidate.name && o.status == "fitted" &&
+             o.delta_bic < -setup.request.bic_threshold;
+    });
+    if (evidence) promising.push_back(candidate);
+  }
+  auto more = fit_candidates(setup, baseline, noise, measured, promising, simulations);
+  outcomes.insert(outcomes.end(), std::make_move_iterator(more.begin()),
+                  std::make_move_iterator(more.end()));
   return outcomes;
 }
 
@@ -322,7 +351,7 @@ Discovery discover(const DiscoverSetup& setup) {
       discovery.skipped.push_back(std::move(skipped));
   }
   std::vector<CandidateOutcome> outcomes =
-      fit_candidates(setup, baseline, noise, measured, tried, simulations);
+      fit_catalogue(setup, baseline, noise, measured, tried, simulations);
   choose_members(outcomes);
   rank(outcomes);
 
@@ -340,7 +369,7 @@ Discovery discover(const DiscoverSetup& setup) {
     simulations += retuned.simulations;
     if (retuned.cost < baseline.result.cost - 0.5) {
       baseline = baseline_of(retuned_spec, retuned, noise);
-      outcomes = fit_candidates(setup, baseline, noise, measured, tried, simulations);
+      outcomes = fit_catalogue(setup, baseline, noise, measured, tried, simulations);
       choose_members(outcomes);
       rank(outcomes);
       discovery.base_rounds = 2;
