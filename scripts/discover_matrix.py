@@ -16,13 +16,14 @@ and the median validation gap shrink.
   scripts/discover_matrix.py --resume ...   # go on with an interrupted matrix
 """
 import argparse
-import concurrent.futures
 import json
 import os
 import random
 import statistics
-import subprocess
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from matrix_runs import finish, run, run_cases  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BASE = os.path.join(ROOT, "configs/discover/ch7_base.yaml")
@@ -101,13 +102,6 @@ def effect_forms(name, rng):
     else:
         forms = [("none", [])]
     return forms[rng.randrange(len(forms))]
-
-
-def run(command, log):
-    with open(log, "a", encoding="utf-8") as file:
-        file.write("$ " + " ".join(command) + "\n")
-        file.flush()
-        return subprocess.run(command, stdout=file, stderr=subprocess.STDOUT, check=False).returncode
 
 
 def bench_file(directory, noise_mn, seed):
@@ -239,24 +233,11 @@ def main():
     cases = [(effect, float(noise) if "." in noise else int(noise), seed)
              for effect in arguments.effects.split(",") for noise in arguments.noise.split(",")
              for seed in range(1, arguments.seeds + 1)]
-    results = []
-    with concurrent.futures.ThreadPoolExecutor(arguments.cases_at_once) as pool:
-        for result in pool.map(lambda case: one_case(arguments, inputs, *case), cases):
-            print(json.dumps({k: result.get(k) for k in ("case", "form", "verdict", "gap_shrink",
-                                                          "seconds", "error")}), flush=True)
-            results.append(result)
-    with open(os.path.join(arguments.out, "results.json"), "w", encoding="utf-8") as file:
-        json.dump(results, file, indent=1)
-    text = table(results)
-    with open(os.path.join(arguments.out, "recovery.md"), "w", encoding="utf-8") as file:
-        file.write(text + "\n")
-    print(text)
-    if any("error" in r for r in results):
-        sys.exit("discover_matrix: some cases failed (see their log.txt)")
-    missed = [r["case"] for r in results if r["verdict"] != r["effect"]]
-    if arguments.check and missed:
-        sys.exit("discover_matrix: wrong verdicts: " + ", ".join(missed))
-
+    results = run_cases([(arguments, inputs, *case) for case in cases], one_case,
+                        arguments.cases_at_once,
+                        ("case", "form", "verdict", "gap_shrink", "gap_closed", "seconds", "error"))
+    finish("discover_matrix", arguments.out, results, table(results), lambda r: r["effect"],
+           arguments.check)
 
 if __name__ == "__main__":
     main()

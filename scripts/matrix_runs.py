@@ -1,0 +1,42 @@
+"""What the two hidden-effect matrices of `tcpmsim discover` share (scripts/discover_matrix.py,
+scripts/independent_matrix.py): a command run into a case's log, the cases run a few at a time
+with a line printed as each ends, and the results written and checked."""
+import concurrent.futures
+import json
+import os
+import subprocess
+import sys
+
+
+def run(command, log):
+    """Runs `command` with its output appended to `log`; its exit code."""
+    with open(log, "a", encoding="utf-8") as file:
+        file.write("$ " + " ".join(command) + "\n")
+        file.flush()
+        return subprocess.run(command, stdout=file, stderr=subprocess.STDOUT, check=False).returncode
+
+
+def run_cases(cases, one_case, at_once, printed):
+    """`one_case(*case)` for every case, `at_once` at a time, in order; prints the keys
+    `printed` of each result as JSON as it ends."""
+    results = []
+    with concurrent.futures.ThreadPoolExecutor(at_once) as pool:
+        for result in pool.map(lambda case: one_case(*case), cases):
+            print(json.dumps({k: result.get(k) for k in printed}), flush=True)
+            results.append(result)
+    return results
+
+
+def finish(name, out, results, text, expected, check):
+    """Writes results.json and recovery.md (`text`) into `out` and prints the table; exits
+    non-zero when a case failed, or with `check` when a verdict is not `expected(result)`."""
+    with open(os.path.join(out, "results.json"), "w", encoding="utf-8") as file:
+        json.dump(results, file, indent=1)
+    with open(os.path.join(out, "recovery.md"), "w", encoding="utf-8") as file:
+        file.write(text + "\n")
+    print(text)
+    if any("error" in r and r["error"] for r in results):
+        sys.exit(f"{name}: some cases failed (see their log.txt)")
+    wrong = [r["case"] for r in results if r["verdict"] != expected(r)]
+    if check and wrong:
+        sys.exit(f"{name}: wrong verdicts: " + ", ".join(wrong))
