@@ -125,6 +125,34 @@ void rank(std::vector<CandidateOutcome>& candidates) {
   });
 }
 
+// The refit of a candidate whose problem and settings (its nested start first) are in
+// `outcome.spec`, from the best multistart point; again from the nested start alone when that
+// ended above it.
+void refit_nested(CandidateOutcome& outcome, const FitSettings& settings) {
+  const FitProblem& problem = outcome.spec.problem;
+  outcome.result = fit_model(problem, settings);
+  outcome.nested_cost = outcome.result.start_cost;
+  const auto above_nested = [&](const FitResult& result) {
+    return result.cost > outcome.nested_cost * (1.0 + 1e-9);
+  };
+  if (above_nested(outcome.result)) {
+    FitSettings continuation = settings;
+    continuation.starts = 0;
+    continuation.max_iterations = 2 * settings.max_iterations;
+    FitResult again = fit_model(problem, continuation);
+    again.simulations += outcome.result.simulations;
+    again.iterations += outcome.result.iterations;
+    outcome.result = std::move(again);
+    outcome.retried = true;
+  }
+  outcome.status = above_nested(outcome.result) ? "failed" : "fitted";
+  if (outcome.status == "failed")
+    outcome.reason = "the refit ended above its nested start (cost " +
+                     number_text(outcome.result.cost, 8) + " against " +
+                     number_text(outcome.nested_cost, 8) +
+                     ") also from zero size: a solver failure, not evidence";
+}
+
 // The candidate refit: the base parameters (at the base estimates, same bounds) and the
 // effect's, starting where the effect has zero size (the base model: its nested start), its
 // multistart drawing the effect's only. A refit that ends above its nested start went the wrong
@@ -159,30 +187,7 @@ CandidateOutcome fit_candidate(const DiscoverSetup& setup, const FitResult& base
     // The cost is about half the sample count (some 10^4 here); a relative 1e-6 is 0.01 of it,
     // far below the BIC's unit, at which the ranking is decided.
     settings.function_tolerance = 1e-6;
-    outcome.result = fit_model(problem, settings);
-    outcome.nested_cost = outcome.result.start_cost;
-    const auto above_nested = [&](const FitResult& result) {
-      return result.cost > outcome.nested_cost * (1.0 + 1e-9);
-    };
-    if (above_nested(outcome.result)) {
-      FitSettings continuation = settings;
-      continuation.starts = 0;
-      continuation.max_iterations = 2 * settings.max_iterations;
-      FitResult again = fit_model(problem, continuation);
-      again.simulations += outcome.result.simulations;
-      again.iterations += outcome.result.iterations;
-      outcome.result = std::move(again);
-      outcome.retried = true;
-    }
-    if (above_nested(outcome.result)) {
-      outcome.status = "failed";
-      outcome.reason = "the refit ended above its nested start (cost " +
-                       number_text(outcome.result.cost, 8) + " against " +
-                       number_text(outcome.nested_cost, 8) +
-                       ", the base model's) also from zero size: a solver failure, not evidence";
-    } else {
-      outcome.status = "fitted";
-    }
+    refit_nested(outcome, settings);
   } catch (const std::exception& error) {
     outcome.status = "failed";
     outcome.reason = error.what();

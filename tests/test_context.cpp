@@ -16,12 +16,7 @@ using namespace tcpmsim::testing;
 namespace {
 
 Trace run(const Scenario& scenario, Context& context) {
-  MemorySink sink(*scenario.system);
-  Trace trace;
-  trace.statistics = integrate(scenario, context, sink);
-  trace.time = std::move(sink.time);
-  trace.channels = std::move(sink.channels);
-  return trace;
+  return simulate(scenario, context);
 }
 
 void check_identical(const Trace& a, const Trace& b) {

@@ -32,6 +32,25 @@ void connect_deflection_term(SystemBuilder& system, const Component& term,
   connect_force_term(system, muscle);
 }
 
+// A term driven by the muscle's temperature, which the reduced form reports only with its
+// force_per_kelvin.
+void require_temperature(const ConfigNode& section, const MuscleAttachment& muscle,
+                         const std::string& what) {
+  if (!muscle.facts->thermal.reports_temperature) {
+    section.fail(what +
+                 " the muscle's temperature: use the physical thermal form, or give the reduced "
+                 "form's thermal_force.force_per_kelvin");
+  }
+}
+
+// A heat loss of the muscle's temperature over its ambient, into its heat balance.
+void connect_heat_term(SystemBuilder& system, const Component& term,
+                       const MuscleAttachment& muscle) {
+  system.connect(term, "temperature", muscle.muscle + ".temperature");
+  system.connect(term, "ambient_temperature", muscle.muscle + ".ambient_temperature");
+  system.connect(muscle.muscle + ".heat_loss", muscle.group + ".heat_loss");
+}
+
 // A heat term depends on the muscle's temperature, which the reduced form reports only with
 // its force_per_kelvin.
 void require_heat_terms(const ConfigNode& section, const MuscleAttachment& muscle,
@@ -54,19 +73,12 @@ void attach_free_convection(const ConfigNode& section, const MuscleAttachment& m
                             ScenarioBuilder& build) {
   require_heat_terms(section, muscle, "free convection");
   SystemBuilder& system = build.system();
-  auto& convection = system.add(FreeConvection::from_config(muscle.group, section));
-  system.connect(convection, "temperature", muscle.muscle + ".temperature");
-  system.connect(convection, "ambient_temperature", muscle.muscle + ".ambient_temperature");
-  system.connect(muscle.muscle + ".heat_loss", muscle.group + ".heat_loss");
+  connect_heat_term(system, system.add(FreeConvection::from_config(muscle.group, section)), muscle);
 }
 
 void attach_thermal_softening(const ConfigNode& section, const MuscleAttachment& muscle,
                               ScenarioBuilder& build) {
-  if (!muscle.facts->thermal.reports_temperature) {
-    section.fail(
-        "a temperature-dependent stiffness needs the muscle's temperature: use the physical "
-        "thermal form, or give the reduced form's thermal_force.force_per_kelvin");
-  }
+  require_temperature(section, muscle, "a temperature-dependent stiffness needs");
   SystemBuilder& system = build.system();
   auto& spring = system.add(ThermalSoftening::from_config(muscle.group, section));
   system.connect(spring, "temperature", muscle.muscle + ".temperature");
@@ -111,11 +123,7 @@ void attach_heating_lag(const ConfigNode& section, const MuscleAttachment& muscl
 
 void attach_ratchet(const ConfigNode& section, const MuscleAttachment& muscle,
                     ScenarioBuilder& build) {
-  if (!muscle.facts->thermal.reports_temperature) {
-    section.fail(
-        "a ratchet is driven by the muscle's temperature: use the physical thermal form, or give "
-        "the reduced form's thermal_force.force_per_kelvin");
-  }
+  require_temperature(section, muscle, "a ratchet is driven by");
   SystemBuilder& system = build.system();
   auto& ratchet = system.add(Ratchet::from_config(muscle.group, section));
   system.connect(ratchet, "temperature", muscle.muscle + ".temperature");
@@ -128,9 +136,7 @@ void attach_heating_convection(const ConfigNode& section, const MuscleAttachment
   SystemBuilder& system = build.system();
   auto& convection = system.add(HeatingConvection::from_config(muscle.group, section));
   system.share_input(muscle.muscle + ".power", convection, "power");
-  system.connect(convection, "temperature", muscle.muscle + ".temperature");
-  system.connect(convection, "ambient_temperature", muscle.muscle + ".ambient_temperature");
-  system.connect(muscle.muscle + ".heat_loss", muscle.group + ".heat_loss");
+  connect_heat_term(system, convection, muscle);
 }
 
 }  // namespace
