@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 
 #include "identification/effect_catalogue.h"
+#include "models/muscle.h"
 #include "sim/run.h"
 #include "tests/support/test_support.h"
 
@@ -117,5 +119,29 @@ TEST_CASE("Candidates that cannot attach to a base model are skipped with the re
     CHECK(skipped == std::vector<std::string>{
                          "nonlinear_convection", "thermal_lag", "temperature_dependent_stiffness",
                          "ratchet", "heating_dependent_convection", "inductance_temperature"});
+  }
+}
+
+TEST_CASE("Every effect kind is a discover candidate, or is excluded with the reason") {
+  // An effect added to the registry without a candidate would never be tried by discover. The
+  // kinds excluded, and why:
+  const std::map<std::string, std::string> excluded = {
+      {"thermal_lag",
+       "a two-node wire cannot start at zero size (C_w > 0): heating_lag is the thermal-lag "
+       "family's nested member"},
+  };
+  const std::string data_path = protocol_record("60 s");
+  const Scenario base = base_model(data_path);
+  const MeasuredData data = read_measured_data(data_path, *shared_units());
+  const auto candidates = fit::effect_candidates(base, base.make_context(), data,
+                                                 {"load.force", "muscle.inductance_measure"});
+  for (const auto& kind : standard_kinds().kind_names(kEffectCategory)) {
+    INFO(kind);
+    bool attached = false;
+    for (const auto& candidate : candidates.candidates) {
+      for (const auto& override : candidate.overrides)
+        attached = attached || override.find("type: " + kind + ",") != std::string::npos;
+    }
+    CHECK(attached != (excluded.count(kind) == 1));
   }
 }
