@@ -288,7 +288,8 @@ Candidates effect_candidates(const Scenario& scenario, const Context& fitted,
                            "residual against power times the temperature rise");
       fan.attach("heating_convection")
           .free("conductance", 0.0, 0.0, 3.0 * ha, "W/K")
-          .fixed("reference_power", base.power_peak, "W");
+          .fixed("reference_power", base.power_peak, "W")
+          .free("time_constant", 1.0, 0.05, 60.0, "s");
       add(fan);
     } else {
       skip("heating_dependent_convection", "the measurement has no power channel");

@@ -275,4 +275,15 @@ TEST_CASE("A heating-driven convection raises hA by G_P P / P_ref while the heat
                 "reference_power: 3 W}]"});
   CHECK(trace["muscle/temperature"].back() - kAmbient ==
         Approx(1.5 / (kConductance + 0.03 * 1.5 / 3.0)).epsilon(1e-6));
+  // A boost that spins up with tau = 20 s reaches the same steady state, and while it spins up
+  // it cools less than the boost that follows at once.
+  const Trace lagged =
+      simulate(physical_muscle_yaml(),
+               {kPowerStep, "scenario.duration=400 s",
+                "muscle.effects=[{type: heating_convection, name: fan, conductance: 0.03 W/K, "
+                "reference_power: 3 W, time_constant: 20 s}]"});
+  CHECK(lagged["muscle/temperature"].back() ==
+        Approx(trace["muscle/temperature"].back()).epsilon(1e-6));
+  const std::size_t spinning = 200;  // 20 s at 10 Hz: 10 s after the step
+  CHECK(lagged["muscle/temperature"][spinning] > trace["muscle/temperature"][spinning] + 0.05);
 }

@@ -241,7 +241,8 @@ load: {type: deflection, deflection: 20 mm}
   kinds.add({kEffectCategory,
              "heating_convection",
              "a heat-transfer coefficient that rises with the heating input (a fan or heat "
-             "gun running with the heater): Q = G_P (P / P_ref) (T - T_amb)",
+             "gun running with the heater): Q = G_P (P_b / P_ref) (T - T_amb), the boost P_b "
+             "following the input P with time constant tau (0: at once)",
              {{example_muscle_scenario("  effects:\n    - {type: heating_convection, name: fan, "
                                        "conductance: 0.02 W/K, reference_power: 3 W}\n",
                                        ""),

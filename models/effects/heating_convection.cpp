@@ -9,21 +9,38 @@ HeatingConvection::HeatingConvection(std::string group, HeatingConvectionParamet
 std::unique_ptr<HeatingConvection> HeatingConvection::from_config(const std::string& group,
                                                                   const ConfigNode& node) {
   using P = HeatingConvectionParameters;
-  node.declare({"type", "name", "conductance", "reference_power"});
+  node.declare({"type", "name", "conductance", "reference_power", "time_constant"});
   P p;
   ParameterBindings<P> bind;
   bind.quantity(node, "conductance", "W/K", ValueCheck::non_negative(), p,
                 bind.member(&P::conductance));
   bind.quantity(node, "reference_power", "W", ValueCheck::positive(), p,
                 bind.member(&P::reference_power));
+  bind.quantity_or(node, "time_constant", "s", 0.0, ValueCheck::non_negative(), p,
+                   bind.member(&P::time_constant));
   return std::make_unique<HeatingConvection>(group, p, std::move(bind));
 }
 
+void HeatingConvection::initialize(const Evaluation& evaluation,
+                                   std::span<double> own_state) const {
+  own_state[0] = input(evaluation, kPower);
+}
+
 void HeatingConvection::compute_outputs(const Evaluation& evaluation) const {
-  set_output(
-      evaluation, kHeatLoss,
-      heating_convection::heat_loss(run_parameters(evaluation), input(evaluation, kPower),
-                                    input(evaluation, kTemperature) - input(evaluation, kAmbient)));
+  const auto& p = run_parameters(evaluation);
+  const double drive = p.time_constant > 0.0 ? state(evaluation, 0) : input(evaluation, kPower);
+  set_output(evaluation, kHeatLoss,
+             heating_convection::heat_loss(
+                 p, drive, input(evaluation, kTemperature) - input(evaluation, kAmbient)));
+}
+
+void HeatingConvection::compute_derivatives(const Evaluation& evaluation,
+                                            double* derivatives) const {
+  const auto& p = run_parameters(evaluation);
+  set_derivative(derivatives, 0,
+                 p.time_constant > 0.0
+                     ? (input(evaluation, kPower) - state(evaluation, 0)) / p.time_constant
+                     : 0.0);
 }
 
 }  // namespace tcpmsim
