@@ -58,11 +58,12 @@ struct Options {
   std::vector<std::string> configs;  // run: one or more scenario files
   std::string output_directory = "results";
   int jobs = 1;
-  std::uint64_t max_output_bytes = 2'000'000'000;  // run: --max-output-size
-  std::string recover_output;                      // recover: -o
-  std::string data;           // fit: the measurement, in place of the fit file's
-  std::string fit_directory;  // fit: where its outputs go
-  std::string bench;          // measure: the bench file
+  // run: --max-output-size
+  std::uint64_t max_output_bytes = static_cast<std::uint64_t>(tcpmsim::kDefaultRecordLimit);
+  std::string recover_output;  // recover: -o
+  std::string data;            // fit: the measurement, in place of the fit file's
+  std::string fit_directory;   // fit: where its outputs go
+  std::string bench;           // measure: the bench file
   int fit_jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   tcpmsim::fit::DiscoverRequest discover;  // discover
   bool plots = true;
@@ -346,6 +347,7 @@ int measure(const Options& options) {
   auto units = std::make_shared<tcpmsim::UnitSystem>();
   const tcpmsim::Scenario scenario = load(options);
   const tcpmsim::fit::Bench bench = tcpmsim::fit::load_bench(options.bench, scenario, units);
+  tcpmsim::check_record_size(scenario, tcpmsim::kDefaultRecordLimit);  // its samples, in memory
   const std::string output =
       options.output.empty() ? "results/" + scenario.settings.name + ".csv" : options.output;
   tcpmsim::create_parent_directories(output);

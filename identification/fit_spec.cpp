@@ -32,6 +32,14 @@ TimeWindow read_window(const ConfigNode& root, std::string_view key, const Measu
   return {from, to};
 }
 
+// Fails at `key` when its window holds fewer than `minimum` of the data's samples.
+void require_samples(const ConfigNode& root, std::string_view key, const TimeWindow& window,
+                     const MeasuredData& data, std::size_t minimum, std::string_view needed_for) {
+  if (const std::string problem = window_samples_problem(data, window, minimum, needed_for);
+      !problem.empty())
+    root.at(key).fail(problem);
+}
+
 std::vector<FitOutput> read_outputs(const ConfigNode& root, const Scenario& model,
                                     const MeasuredData& data) {
   std::vector<FitOutput> outputs;
@@ -195,6 +203,9 @@ FitSpec load_fit(const std::string& file, const std::vector<std::string>& overri
   spec.problem.validation = validation;
   spec.problem.outputs = read_outputs(root, *model, *data);
   spec.problem.parameters = read_parameters(root, *model);
+  require_samples(root, "identification", identification, *data, 1, "a fit");
+  if (root.has("validation"))
+    require_samples(root, "validation", validation, *data, 1, "scoring it");
   spec.settings.threads = threads;
   read_multistart(root, spec.settings);
   spec.settings.gradient = read_gradient(root, spec.problem);

@@ -8,6 +8,7 @@
 #include <limits>
 #include <mutex>
 #include <numeric>
+#include <stdexcept>
 
 #include "sim/not_a_number.h"
 #include "sim/parallel_runs.h"
@@ -366,6 +367,17 @@ std::pair<bool, std::string> choose_gradient(const FitProblem& problem, Gradient
   return {false, "finite differences (no forward sensitivities: " + unavailable + ")"};
 }
 
+// A problem whose windows hold too few samples is the caller's mistake (load_fit refuses it at
+// its key): std::invalid_argument, never a score of no samples.
+void check_windows(const FitProblem& problem) {
+  std::string problem_text =
+      window_samples_problem(*problem.data, problem.identification, 1, "the identification window");
+  if (problem_text.empty() && problem.validation.to > problem.validation.from)
+    problem_text =
+        window_samples_problem(*problem.data, problem.validation, 1, "the validation window");
+  if (!problem_text.empty()) throw std::invalid_argument(problem_text);
+}
+
 }  // namespace
 
 WindowScore score_window(const FitProblem& problem, const std::vector<double>& values,
@@ -374,6 +386,7 @@ WindowScore score_window(const FitProblem& problem, const std::vector<double>& v
 }
 
 FitResult fit_model(const FitProblem& problem, const FitSettings& settings) {
+  check_windows(problem);
   const auto [sensitivities, gradient] = choose_gradient(problem, settings.gradient);
   const Residuals residuals(problem);
   const auto points = starting_points(problem, settings);

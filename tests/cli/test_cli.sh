@@ -174,6 +174,33 @@ contains "$work/out" "muscle.mechanics.k1" "the summary lists the parameters"
 contains "$work/out" "validation     force" "the summary scores the validation window"
 [[ -s $work/fit/fit.json && -s $work/fit/fitted.yaml && -s $work/fit/fit.h5 ]] && echo "ok: fit.json, fitted.yaml, fit.h5" || { echo "FAIL: fit outputs missing"; failures=$((failures + 1)); }
 expect 0 "the fitted scenario runs as it is" -- "$tcpmsim" run "$work/fit/fitted.yaml" -o "$work/fitted.h5" --quiet
+# Issue 31: a window that holds no sample (between two samples, or inside a gap in the data's
+# times) is a located configuration error, not a crash, and nothing is written.
+fit_file() {  # fit_file NAME IDENTIFICATION [VALIDATION]: a one-parameter fit of the base model
+  printf 'model: %s\noutputs: [{channel: force, output: load.force, noise: 1 mN}]\nparameters: [{path: muscle.mechanics.k1, bounds: [5 N/m, 20 N/m]}]\nidentification: %s\n' \
+    "$discover/ch7_base.yaml" "$2" >"$work/$1"
+  [[ -n ${3:-} ]] && printf 'validation: %s\n' "$3" >>"$work/$1"
+}
+fit_file between.yaml '[100.01 s, 100.02 s]'
+expect 3 "an identification window between two samples is a configuration error" -- "$tcpmsim" fit \
+  "$work/between.yaml" --data "$work/measured.csv" --out "$work/fit_between"
+contains "$work/err" "between.yaml:4:17: error: identification: the window [100.01 s, 100.02 s] holds no sample of the data" "the empty identification window is located"
+fit_file empty_validation.yaml '[0 s, 400 s]' '[500.01 s, 500.02 s]'
+expect 3 "a validation window without a sample is a configuration error" -- "$tcpmsim" fit \
+  "$work/empty_validation.yaml" --data "$work/measured.csv" --out "$work/fit_between"
+contains "$work/err" "empty_validation.yaml:5:13: error: validation: the window [500.01 s, 500.02 s] holds no sample of the data" "the empty validation window is located"
+awk -F, 'NR == 1 || $1 < 100 || $1 > 300' "$work/measured.csv" >"$work/gap.csv"
+fit_file in_gap.yaml '[0 s, 80 s]' '[150 s, 250 s]'
+expect 3 "a window inside a gap in the data is a configuration error" -- "$tcpmsim" fit \
+  "$work/in_gap.yaml" --data "$work/gap.csv" --out "$work/fit_between"
+contains "$work/err" "in_gap.yaml:5:13: error: validation: the window [150 s, 250 s] holds no sample of the data" "the window inside the gap is located"
+[[ ! -e $work/fit_between ]] && echo "ok: nothing written for an empty window" || { echo "FAIL: a fit directory after a window error"; failures=$((failures + 1)); }
+# Issue 31: a sweep whose axes multiply beyond the cap is refused before a run is made.
+printf 'sweep: {name: huge}\nscenario: %s\naxes:\n  - {parameter: muscle.thermal.conductance, range: {from: 1 W/K, to: 2 W/K, count: 1000}}\n  - {parameter: muscle.thermal.heat_capacity, range: {from: 1 J/K, to: 2 J/K, count: 1000}}\n  - {parameter: muscle.mechanics.k1, range: {from: 1 N/m, to: 2 N/m, count: 1000}}\n' \
+  "$source_dir/configs/sweeps/thermal_step.yaml" >"$work/huge_sweep.yaml"
+expect 3 "a sweep of 1e9 runs is a configuration error" -- "$tcpmsim" sweep "$work/huge_sweep.yaml" -o "$work/huge.h5"
+contains "$work/err" "huge_sweep.yaml:4:3: error: axes: the axes make 1000 x 1000 x 1000 = 1e+09 runs, over the limit of 1e+06 runs a sweep" "the sweep's size is refused with the product and the cap"
+[[ ! -e $work/huge.h5 && ! -e $work/huge.h5.partial ]] && echo "ok: no sweep file after the size error" || { echo "FAIL: a sweep file after the size error"; failures=$((failures + 1)); }
 # discover: a request it cannot serve is refused before any fit, and nothing is written.
 expect 2 "discover with an input the model does not replay is a usage error" -- "$tcpmsim" discover \
   --model "$discover/ch7_base.yaml" --data "$work/measured.csv" --inputs power,force --outputs force \
@@ -203,7 +230,6 @@ contains "$work/err" "has no channel 'muscle/forse'; it has" "the analysis error
 expect 2 "analyze of a file that is no record is a usage error" -- "$tcpmsim" analyze "$work/analysis.h5" \
   --response muscle/force -o "$work/none_analysis.h5"
 contains "$work/err" "is not a tcpmsim record" "the error says what the file is not"
-
 # Provenance (issue 14): every file the commands above wrote carries the version, git commit,
 # command line and configs, and units on every numeric dataset.
 if /usr/bin/python3 -c "import h5py" 2>/dev/null; then

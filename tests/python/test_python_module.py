@@ -206,6 +206,26 @@ class PythonErrorsAreCommandLineErrors(unittest.TestCase):
         with self.assertRaises(tcpmsim.ConfigError):
             tcpmsim.Scenario.from_yaml("configs/no_such_file.yaml")
 
+    def test_a_run_too_large_for_memory_raises_the_record_size_message(self):
+        # Issue 31: the in-memory run grew until MemoryError; it is refused before it starts,
+        # with the message `tcpmsim run` gives for the same record.
+        scenario = tcpmsim.Scenario.from_yaml(CONFIGS[0])
+        for keyword, setting in [("output_rate", "output.rate=1e9 Hz"),
+                                 ("duration", "scenario.duration=1e9 s")]:
+            with self.subTest(keyword=keyword):
+                expected = command_line_error("run", CONFIGS[0], "--set", setting)
+                with self.assertRaises(tcpmsim.ConfigError) as raised:
+                    scenario.run(**{keyword: 1e9})
+                message = str(raised.exception)
+                # The same error; only the --set's spelling of 1e9 differs in its location.
+                self.assertEqual(message.split(": error: ")[1], expected.split(": error: ")[1])
+                self.assertIn("error: output.rate: the record would hold", message)
+                self.assertIn("over the limit of 2 GB", message)
+        with self.assertRaises(tcpmsim.ConfigError):
+            tcpmsim.run_many([scenario.copy().set("output.rate", "1e9 Hz")])
+        small = scenario.run(duration=10, max_output_size=1e9)
+        self.assertEqual(small["time"][-1], 10.0)
+
     def test_a_solver_failure_raises_with_the_samples_before_it(self):
         scenario = tcpmsim.Scenario.from_yaml(CONFIGS[0]).set("solver.max_steps", 200)
         with self.assertRaises(tcpmsim.SolverFailure) as raised:
