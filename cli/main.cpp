@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -435,6 +436,17 @@ CLI::App* add_analysis(CLI::App& app, const char* name, const char* description,
   return command;
 }
 
+// A time on the command line: a finite number of seconds (CLI11 reads "nan" and "inf" as numbers).
+CLI::Validator finite_time() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double value = 0.0;
+        if (CLI::detail::lexical_cast(text, value) && std::isfinite(value)) return "";
+        return "expected a time in s, a finite number, got '" + text + "'";
+      },
+      "TIME");
+}
+
 // The command line as typed, each argument that needs it in single quotes: a file's provenance.
 std::string invocation_text(int argc, char** argv) {
   std::string text;
@@ -575,8 +587,9 @@ int main(int argc, char** argv) {
                    "Frequency response from this input (repeat for several); default without "
                    "--reference: every prescribed input the window excites")
       ->type_name("GROUP/NAME");
-  analyze_command->add_option("--from", analysis.request.from, "Window start [s]");
-  analyze_command->add_option("--to", analysis.request.to, "Window end [s]");
+  analyze_command->add_option("--from", analysis.request.from, "Window start [s]")
+      ->check(finite_time());
+  analyze_command->add_option("--to", analysis.request.to, "Window end [s]")->check(finite_time());
   analyze_command
       ->add_option("--method", analysis.request.method,
                    "auto (lines for multisines, else spectral), lines or spectral")

@@ -203,7 +203,10 @@ FitSpec load_fit(const std::string& file, const std::vector<std::string>& overri
   spec.problem.validation = validation;
   spec.problem.outputs = read_outputs(root, *model, *data);
   spec.problem.parameters = read_parameters(root, *model);
-  require_samples(root, "identification", identification, *data, 1, "a fit");
+  // Fewer samples than parameters + 1 fit them exactly and leave no residual to estimate errors.
+  const std::size_t fitted = spec.problem.parameters.size();
+  require_samples(root, "identification", identification, *data, fitted + 1,
+                  "a fit of " + std::to_string(fitted) + " parameter" + (fitted == 1 ? "" : "s"));
   if (root.has("validation"))
     require_samples(root, "validation", validation, *data, 1, "scoring it");
   spec.settings.threads = threads;

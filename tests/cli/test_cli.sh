@@ -195,6 +195,13 @@ expect 3 "a window inside a gap in the data is a configuration error" -- "$tcpms
   "$work/in_gap.yaml" --data "$work/gap.csv" --out "$work/fit_between"
 contains "$work/err" "in_gap.yaml:5:13: error: validation: the window [150 s, 250 s] holds no sample of the data" "the window inside the gap is located"
 [[ ! -e $work/fit_between ]] && echo "ok: nothing written for an empty window" || { echo "FAIL: a fit directory after a window error"; failures=$((failures + 1)); }
+# Issue 31: a window of fewer samples than parameters + 1 fits them exactly, with no residual left
+# to estimate their errors: refused, not reported as identified.
+fit_file one_sample.yaml '[100 s, 100.03 s]'
+expect 3 "an identification window of one sample for one parameter is a configuration error" -- \
+  "$tcpmsim" fit "$work/one_sample.yaml" --data "$work/measured.csv" --out "$work/fit_between"
+contains "$work/err" "one_sample.yaml:4:17: error: identification: the window [100 s, 100.03 s] holds 1 sample of the data; a fit of 1 parameter needs at least 2" "the too-short window is located, with the count it needs"
+[[ ! -e $work/fit_between ]] && echo "ok: nothing written for a window too short" || { echo "FAIL: a fit directory after a window error"; failures=$((failures + 1)); }
 # Issue 31: a sweep whose axes multiply beyond the cap is refused before a run is made.
 printf 'sweep: {name: huge}\nscenario: %s\naxes:\n  - {parameter: muscle.thermal.conductance, range: {from: 1 W/K, to: 2 W/K, count: 1000}}\n  - {parameter: muscle.thermal.heat_capacity, range: {from: 1 J/K, to: 2 J/K, count: 1000}}\n  - {parameter: muscle.mechanics.k1, range: {from: 1 N/m, to: 2 N/m, count: 1000}}\n' \
   "$source_dir/configs/sweeps/thermal_step.yaml" >"$work/huge_sweep.yaml"
@@ -230,6 +237,26 @@ contains "$work/err" "has no channel 'muscle/forse'; it has" "the analysis error
 expect 2 "analyze of a file that is no record is a usage error" -- "$tcpmsim" analyze "$work/analysis.h5" \
   --response muscle/force -o "$work/none_analysis.h5"
 contains "$work/err" "is not a tcpmsim record" "the error says what the file is not"
+# Issue 31: a window bound that is no finite time is refused, naming the option.
+for bound in "--from nan" "--to nan" "--to inf" "--from -inf"; do
+  expect 2 "analyze $bound is a usage error" -- "$tcpmsim" analyze "$work/steps.h5" \
+    --response muscle/force --reference drive/power $bound -o "$work/none_analysis.h5"
+  contains "$work/err" "${bound% *}: expected a time in s, a finite number, got '${bound#* }'" "the error names ${bound% *}"
+done
+[[ ! -e $work/none_analysis.h5 ]] && echo "ok: no analysis of a window that is none" || { echo "FAIL: an analysis file for a NaN window"; failures=$((failures + 1)); }
+
+# Issue 31: recover refuses an HDF5 file that tcpmsim did not write, and writes nothing.
+if /usr/bin/python3 -c "import h5py" 2>/dev/null; then
+  /usr/bin/python3 -c 'import sys, h5py, numpy
+with h5py.File(sys.argv[1], "w") as f:
+    f.create_dataset("time", data=numpy.arange(5.0), maxshape=(None,), chunks=True)' "$work/foreign.h5.partial"
+  expect 3 "recover of a foreign HDF5 file is a data-file error" -- "$tcpmsim" recover "$work/foreign.h5.partial"
+  contains "$work/err" "$work/foreign.h5.partial: error: not a tcpmsim record: it has no 'tcpmsim_version' attribute" "the foreign file is named and why"
+  [[ -e $work/foreign.h5.partial && ! -e $work/foreign.interrupted.h5 && ! -e $work/foreign.interrupted.h5.recovering ]] \
+    && echo "ok: nothing recovered from a foreign file" || { echo "FAIL: recover wrote a record from a foreign file"; ls "$work"; failures=$((failures + 1)); }
+  rm -f "$work/foreign.h5.partial"
+fi
+
 # Provenance (issue 14): every file the commands above wrote carries the version, git commit,
 # command line and configs, and units on every numeric dataset.
 if /usr/bin/python3 -c "import h5py" 2>/dev/null; then
