@@ -351,7 +351,7 @@ int measure(const Options& options) {
   tcpmsim::check_record_size(scenario, tcpmsim::kDefaultRecordLimit);  // its samples, in memory
   const std::string output =
       options.output.empty() ? "results/" + scenario.settings.name + ".csv" : options.output;
-  tcpmsim::create_parent_directories(output);
+  tcpmsim::prepare_output_file(output);  // before the run, as `run` checks its record's path
   const std::string partial = tcpmsim::partial_path(output);
   {
     std::ofstream file(partial);

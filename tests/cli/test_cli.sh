@@ -208,6 +208,16 @@ printf 'sweep: {name: huge}\nscenario: %s\naxes:\n  - {parameter: muscle.thermal
 expect 3 "a sweep of 1e9 runs is a configuration error" -- "$tcpmsim" sweep "$work/huge_sweep.yaml" -o "$work/huge.h5"
 contains "$work/err" "huge_sweep.yaml:4:3: error: axes: the axes make 1000 x 1000 x 1000 = 1e+09 runs, over the limit of 1e+06 runs a sweep" "the sweep's size is refused with the product and the cap"
 [[ ! -e $work/huge.h5 && ! -e $work/huge.h5.partial ]] && echo "ok: no sweep file after the size error" || { echo "FAIL: a sweep file after the size error"; failures=$((failures + 1)); }
+# Issue 31: an output path that cannot be a file is refused before any work, as run refuses it.
+mkdir "$work/outdir"
+expect 4 "measure -o a directory is an output error before the run" -- "$tcpmsim" measure "$discover/ch7_base.yaml" \
+  --set "measurement.file=$work/bench.h5" --bench "$discover/ch7_bench.yaml" -o "$work/outdir"
+contains "$work/err" "tcpmsim: cannot write $work/outdir: it is a directory" "measure names the output and why"
+[[ ! -e $work/outdir.partial ]] && echo "ok: no partial measurement" || { echo "FAIL: measure left $work/outdir.partial"; failures=$((failures + 1)); }
+expect 4 "sweep -o a directory is an output error before any run" -- "$tcpmsim" sweep \
+  "$source_dir/configs/sweeps/thermal_hA_C.yaml" -o "$work/outdir" --quiet
+contains "$work/err" "tcpmsim: cannot write $work/outdir: it is a directory" "sweep names the output and why"
+[[ ! -e $work/outdir.parts ]] && echo "ok: no sweep run before the output error" || { echo "FAIL: the sweep ran before refusing its output"; failures=$((failures + 1)); }
 # discover: a request it cannot serve is refused before any fit, and nothing is written.
 expect 2 "discover with an input the model does not replay is a usage error" -- "$tcpmsim" discover \
   --model "$discover/ch7_base.yaml" --data "$work/measured.csv" --inputs power,force --outputs force \
