@@ -171,9 +171,15 @@ void bind_scenario(py::module_& module) {
           "from_yaml",
           [](const py::object& source, const py::object& settings) {
             std::vector<std::string> overrides;
+            if (!settings.is_none() && !py::isinstance<py::dict>(settings))
+              throw py::type_error(
+                  "set: expected a dict of path: value, e.g. {'measurement.file': 'm.csv'}; got " +
+                  py::repr(settings).cast<std::string>());
             if (!settings.is_none())
               for (const auto& [path, value] : settings.cast<py::dict>())
                 overrides.push_back(py::str(path).cast<std::string>() + "=" + override_text(value));
+            if (py::isinstance<py::bytes>(source))  // YAML text as read from a file or a pipe
+              return PyScenario::from_text(source.cast<std::string>(), std::move(overrides));
             if (py::isinstance<py::str>(source)) {
               const std::string text = source.cast<std::string>();
               if (text.find('\n') != std::string::npos)
@@ -184,7 +190,8 @@ void bind_scenario(py::module_& module) {
                                          std::move(overrides));
           },
           py::arg("source"), py::arg("set") = py::none(),
-          "A scenario from a file path, or from YAML text (any str holding a line break); `set` "
+          "A scenario from a file path, or from YAML text (bytes, or any str holding a line "
+          "break); `set` "
           "({'measurement.file': 'm.csv'}) applies values from the start, as --set does.")
       .def(
           "set",

@@ -159,6 +159,12 @@ printf 'time[s],power[W],deflection[mm],force[mN]\n0,1,20,107\n1,1,nan,107\n' >"
 expect 3 "a bad measurement is a data-file error" -- "$tcpmsim" fit "$discover/ch7_fit.yaml" --data "$work/bad.csv" --out "$work/fit"
 contains "$work/err" "bad.csv:3:5: error: field 3 (deflection [mm]): expected a finite number, got 'nan'" "the data error is located"
 [[ ! -e $work/fit ]] && echo "ok: nothing written on a data error" || { echo "FAIL: a fit directory after a data error"; failures=$((failures + 1)); }
+# Issue 31: bytes of no UTF-8 sequence are quoted escaped, never echoed raw.
+printf 'time[s],power[W],deflection[mm],force[mN]\n0,1,20,107\n1,1,20,\377\376\200\n' >"$work/garbage.csv"
+expect 3 "binary garbage in a measurement is a data-file error" -- "$tcpmsim" fit "$discover/ch7_fit.yaml" --data "$work/garbage.csv" --out "$work/fit"
+contains "$work/err" 'garbage.csv:3:8: error: field 4 (force [mN]):' "the garbage is located"
+contains "$work/err" "'\xff\xfe\x80'" "the garbage is escaped"
+iconv -f UTF-8 -t UTF-8 "$work/err" >/dev/null 2>&1 && echo "ok: the message is UTF-8" || { echo "FAIL: raw bytes in the message"; failures=$((failures + 1)); }
 expect 3 "a model without its measurement is a configuration error" -- "$tcpmsim" run "$discover/ch7_base.yaml" -o "$work/none.h5"
 contains "$work/err" "expected a file to replay: 'file', or the scenario's measurement.file" "the error says how to give the measurement"
 expect 0 "the model runs alone with --set measurement.file" -- "$tcpmsim" run "$discover/ch7_base.yaml" --set "measurement.file=$work/bench.h5" -o "$work/base.h5" --quiet
@@ -202,6 +208,13 @@ expect 3 "an identification window of one sample for one parameter is a configur
   "$tcpmsim" fit "$work/one_sample.yaml" --data "$work/measured.csv" --out "$work/fit_between"
 contains "$work/err" "one_sample.yaml:4:17: error: identification: the window [100 s, 100.03 s] holds 1 sample of the data; a fit of 1 parameter needs at least 2" "the too-short window is located, with the count it needs"
 [[ ! -e $work/fit_between ]] && echo "ok: nothing written for a window too short" || { echo "FAIL: a fit directory after a window error"; failures=$((failures + 1)); }
+# Issue 31: a measured force so large that the squared residuals overflow: the fit fails with
+# the sample and the values that did it, not an empty reason.
+awk -F, -v OFS=, 'NR == 101 { $4 = "1e308" } { print }' "$work/measured.csv" >"$work/huge_force.csv"
+fit_file huge_force.yaml '[0 s, 400 s]'
+expect 1 "a fit whose residuals overflow fails with its reason" -- "$tcpmsim" fit \
+  "$work/huge_force.yaml" --data "$work/huge_force.csv" --out "$work/fit_huge" --set multistart.starts=0
+contains "$work/err" "the first failure: the residual of load.force against the measured force at t = 6.1875 s is 1e+308 noise widths: the squared residuals overflow (measured 1e+305 N, noise 0.001 N)" "the reason names the sample and the values"
 # Issue 31: a sweep whose axes multiply beyond the cap is refused before a run is made.
 printf 'sweep: {name: huge}\nscenario: %s\naxes:\n  - {parameter: muscle.thermal.conductance, range: {from: 1 W/K, to: 2 W/K, count: 1000}}\n  - {parameter: muscle.thermal.heat_capacity, range: {from: 1 J/K, to: 2 J/K, count: 1000}}\n  - {parameter: muscle.mechanics.k1, range: {from: 1 N/m, to: 2 N/m, count: 1000}}\n' \
   "$source_dir/configs/sweeps/thermal_step.yaml" >"$work/huge_sweep.yaml"
@@ -247,6 +260,14 @@ contains "$work/err" "has no channel 'muscle/forse'; it has" "the analysis error
 expect 2 "analyze of a file that is no record is a usage error" -- "$tcpmsim" analyze "$work/analysis.h5" \
   --response muscle/force -o "$work/none_analysis.h5"
 contains "$work/err" "is not a tcpmsim record" "the error says what the file is not"
+# Issue 31: a damaged file, or an HDF5 file tcpmsim did not write, is a data-file error (exit 3)
+# whose message says so in its own words.
+head -c 2000 "$work/steps.h5" >"$work/damaged.h5"
+expect 3 "analyze of a damaged file is a data-file error" -- "$tcpmsim" analyze "$work/damaged.h5" \
+  --response muscle/force -o "$work/none_analysis.h5"
+contains "$work/err" "$work/damaged.h5: error: cannot read it as HDF5: damaged, truncated, or not an HDF5 file" "the damaged file is named and why"
+grep -q "H5File" "$work/err" && { echo "FAIL: HDF5's own words leak"; failures=$((failures + 1)); } || echo "ok: no HDF5 function name in the message"
+rm -f "$work/damaged.h5"
 # Issue 31: a window bound that is no finite time is refused, naming the option.
 for bound in "--from nan" "--to nan" "--to inf" "--from -inf"; do
   expect 2 "analyze $bound is a usage error" -- "$tcpmsim" analyze "$work/steps.h5" \
@@ -264,6 +285,9 @@ with h5py.File(sys.argv[1], "w") as f:
   contains "$work/err" "$work/foreign.h5.partial: error: not a tcpmsim record: it has no 'tcpmsim_version' attribute" "the foreign file is named and why"
   [[ -e $work/foreign.h5.partial && ! -e $work/foreign.interrupted.h5 && ! -e $work/foreign.interrupted.h5.recovering ]] \
     && echo "ok: nothing recovered from a foreign file" || { echo "FAIL: recover wrote a record from a foreign file"; ls "$work"; failures=$((failures + 1)); }
+  expect 3 "analyze of a foreign HDF5 file is a data-file error" -- "$tcpmsim" analyze "$work/foreign.h5.partial" \
+    --response muscle/force -o "$work/none_analysis.h5"
+  contains "$work/err" "$work/foreign.h5.partial: error: not a tcpmsim record: it has no 'tcpmsim_version' attribute" "analyze names the foreign file and why"
   rm -f "$work/foreign.h5.partial"
 fi
 

@@ -179,6 +179,22 @@ class PythonAnalysisIsTheCommandLines(unittest.TestCase):
 
 
 class PythonErrorsAreCommandLineErrors(unittest.TestCase):
+    def test_bad_sources_and_arguments_raise_the_modules_errors(self):
+        # Issue 31: a bare RuntimeError, bytes taken for a path, a cryptic ValueError.
+        with self.assertRaises(tcpmsim.UsageError) as raised:
+            tcpmsim.analyze(123, "muscle/force")
+        self.assertIn("expected a Result or a record's path", str(raised.exception))
+        with self.assertRaises(tcpmsim.ConfigError) as raised:
+            tcpmsim.analyze("missing.h5", "muscle/force")
+        self.assertEqual(str(raised.exception), "missing.h5: error: no such file")
+        with open(CONFIGS[0], "rb") as file:
+            text = file.read()
+        self.assertEqual(tcpmsim.Scenario.from_yaml(text).name,
+                         tcpmsim.Scenario.from_yaml(CONFIGS[0]).name)
+        with self.assertRaises(TypeError) as raised:
+            tcpmsim.Scenario.from_yaml(CONFIGS[0], set=["muscle.mechanics.k2=3 mN/mm"])
+        self.assertIn("set: expected a dict of path: value", str(raised.exception))
+
     def test_a_bad_set_raises_the_command_lines_message(self):
         for setting, error in [("muscle.mechanics.k2=3 kg", tcpmsim.ConfigError),
                                ("muscle.mechanics.k2=-1 N/m", tcpmsim.ConfigError),
