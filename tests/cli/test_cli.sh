@@ -268,6 +268,13 @@ expect 3 "analyze of a damaged file is a data-file error" -- "$tcpmsim" analyze 
 contains "$work/err" "$work/damaged.h5: error: cannot read it as HDF5: damaged, truncated, or not an HDF5 file" "the damaged file is named and why"
 grep -q "H5File" "$work/err" && { echo "FAIL: HDF5's own words leak"; failures=$((failures + 1)); } || echo "ok: no HDF5 function name in the message"
 rm -f "$work/damaged.h5"
+# Issue 31: a window that holds too little is named by the options that gave it.
+expect 2 "analyze of a window past the record's end is a usage error" -- "$tcpmsim" analyze "$work/steps.h5" \
+  --response muscle/force --reference drive/power --from 700 -o "$work/none_analysis.h5"
+contains "$work/err" "steps.h5: fewer than two samples in the window (--from 700 s)" "the window error names --from"
+expect 2 "analyze of a window where nothing varies is a usage error" -- "$tcpmsim" analyze "$work/steps.h5" \
+  --response muscle/force --from 0 --to 1 -o "$work/none_analysis.h5"
+contains "$work/err" "in the window (--from 0 s --to 1 s)" "the window error names --from and --to"
 # Issue 31: a window bound that is no finite time is refused, naming the option.
 for bound in "--from nan" "--to nan" "--to inf" "--from -inf"; do
   expect 2 "analyze $bound is a usage error" -- "$tcpmsim" analyze "$work/steps.h5" \
