@@ -208,6 +208,15 @@ expect 3 "an identification window of one sample for one parameter is a configur
   "$tcpmsim" fit "$work/one_sample.yaml" --data "$work/measured.csv" --out "$work/fit_between"
 contains "$work/err" "one_sample.yaml:4:17: error: identification: the window [100 s, 100.03 s] holds 1 sample of the data; a fit of 1 parameter needs at least 2" "the too-short window is located, with the count it needs"
 [[ ! -e $work/fit_between ]] && echo "ok: nothing written for a window too short" || { echo "FAIL: a fit directory after a window error"; failures=$((failures + 1)); }
+# Issue 31: the model file is located at the fit file's model key, whatever is wrong with it.
+sed "s|^model: .*|model: nowhere.yaml|" "$work/one_sample.yaml" >"$work/no_model.yaml"
+expect 3 "a fit whose model file is missing is a configuration error" -- "$tcpmsim" fit \
+  "$work/no_model.yaml" --data "$work/measured.csv" --out "$work/fit_between"
+contains "$work/err" "no_model.yaml:1:8: error: model: no scenario file '$work/nowhere.yaml'" "the missing model is located at its key"
+sed "s|^model: .*|model: $source_dir/configs/sweeps/design_example.yaml|" "$work/one_sample.yaml" >"$work/sweep_model.yaml"
+expect 3 "a sweep file as the model is a configuration error" -- "$tcpmsim" fit \
+  "$work/sweep_model.yaml" --data "$work/measured.csv" --out "$work/fit_between"
+contains "$work/err" "sweep_model.yaml:1:8: error: model: '$source_dir/configs/sweeps/design_example.yaml' is no scenario the fit can run" "the wrong model is blamed at its key, not on a --set never typed"
 # Issue 31: a measured force so large that the squared residuals overflow: the fit fails with
 # the sample and the values that did it, not an empty reason.
 awk -F, -v OFS=, 'NR == 101 { $4 = "1e308" } { print }' "$work/measured.csv" >"$work/huge_force.csv"
