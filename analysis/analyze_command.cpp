@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "sim/config/config_error.h"
+
 namespace tcpmsim {
 namespace {
 
@@ -82,6 +84,8 @@ std::string run_analyze_command(const AnalyzeOptions& options, std::ostream& out
   RecordChannels record;
   try {
     record = read_record_channels(options.record);
+  } catch (const ConfigError&) {
+    throw;  // a file that cannot be read: a data-file error
   } catch (const std::runtime_error& error) {
     throw std::invalid_argument(error.what());  // the input is wrong, not the output
   }

@@ -28,16 +28,25 @@ struct Window {
   }
 };
 
-Window window_of(const std::vector<double>& time, double from, double to,
-                 const std::string& source) {
+// The window as it was asked for, by the command line's options: "--from 10 s --to 20 s", or
+// "the whole record".
+std::string window_options(double from, double to) {
+  std::string text;
+  if (std::isfinite(from)) text += "--from " + number_text(from) + " s";
+  if (std::isfinite(to)) text += (text.empty() ? "--to " : " --to ") + number_text(to) + " s";
+  return text.empty() ? "the whole record" : text;
+}
+
+// The samples in [from, to]; `asked` names the window in the message when it holds too few.
+Window window_of(const std::vector<double>& time, double from, double to, const std::string& source,
+                 const std::string& asked) {
   Window window;
   window.begin =
       static_cast<std::size_t>(std::lower_bound(time.begin(), time.end(), from) - time.begin());
   window.end =
       static_cast<std::size_t>(std::upper_bound(time.begin(), time.end(), to) - time.begin());
   if (window.end < window.begin + 2)
-    throw std::invalid_argument(source + ": fewer than two samples between " + number_text(from) +
-                                " s and " + number_text(to) + " s");
+    throw std::invalid_argument(source + ": fewer than two samples in the window (" + asked + ")");
   return window;
 }
 
@@ -84,8 +93,9 @@ std::vector<std::string> estimated_inputs(const RecordChannels& record,
   if (!request.inputs.empty()) {
     for (const auto& input : request.inputs)
       if (!varies(window.of(series_of(record, input, "the input"))))
-        throw std::invalid_argument("the input '" + input +
-                                    "' is constant in the window: it excites nothing");
+        throw std::invalid_argument("the input '" + input + "' is constant in the window (" +
+                                    window_options(request.from, request.to) +
+                                    "): it excites nothing");
     return request.inputs;
   }
   std::vector<std::string> excited;
@@ -93,9 +103,9 @@ std::vector<std::string> estimated_inputs(const RecordChannels& record,
     if (input != request.output && varies(window.of(record.channel(input).values)))
       excited.push_back(input);
   if (excited.empty())
-    throw std::invalid_argument(record.source +
-                                ": no prescribed input varies in the window; "
-                                "name the input with --input");
+    throw std::invalid_argument(record.source + ": no prescribed input varies in the window (" +
+                                window_options(request.from, request.to) +
+                                "); name the input with --input");
   return excited;
 }
 
@@ -120,7 +130,10 @@ void analyse_response(const RecordChannels& record, const AnalysisRequest& reque
     from = std::max(from, stretch->begin);
     to = std::min(to, stretch->end);
   }
-  if (lines) window = window_of(time, from, std::nextafter(to, -1.0), record.source);
+  if (lines)
+    window = window_of(
+        time, from, std::nextafter(to, -1.0), record.source,
+        "the multisine's stretch " + number_text(from) + " s to " + number_text(to) + " s");
   analysis.from = time[window.begin];
   analysis.to = time[window.end - 1];
   analysis.method = lines ? "lines" : "spectral";
@@ -292,7 +305,8 @@ RecordAnalysis analyze_record(const RecordChannels& record, const AnalysisReques
   analysis.output = request.output;
   series_of(record, request.output, "the output");
   analysis.output_unit = record.channel(request.output).unit;
-  const Window window = window_of(record.time, request.from, request.to, record.source);
+  const Window window = window_of(record.time, request.from, request.to, record.source,
+                                  window_options(request.from, request.to));
   analysis.from = record.time[window.begin];
   analysis.to = record.time[window.end - 1];
   if (!request.reference.empty()) analyse_steps(record, request, window, analysis);

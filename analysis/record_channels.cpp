@@ -3,8 +3,10 @@
 #include <H5Cpp.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <stdexcept>
 
+#include "sim/config/config_error.h"
 #include "sim/io/hdf5_files.h"
 #include "sim/io/input_descriptions.h"
 #include "sim/io/record_layout.h"
@@ -89,14 +91,26 @@ const RecordChannels::Channel& RecordChannels::channel(const std::string& name) 
   throw std::invalid_argument(source + " has no channel '" + name + "'; it has " + names);
 }
 
+namespace {
+
+// A file analyze cannot read at all: a data-file error located at the file.
+[[noreturn]] void unreadable(const std::string& path, const std::string& problem) {
+  throw ConfigError({path, 0, 0, {}}, "", problem);
+}
+
+}  // namespace
+
 RecordChannels read_record_channels(const std::string& path) {
   const std::lock_guard lock(hdf5_mutex());
   RecordChannels record;
   record.source = path;
+  if (!std::filesystem::is_regular_file(path)) unreadable(path, "no such file");
   try {
     H5::Exception::dontPrint();
     const H5::H5File file(path, H5F_ACC_RDONLY);
-    if (!file.nameExists("time"))
+    if (!file.attrExists("tcpmsim_version"))
+      unreadable(path, "not a tcpmsim record: it has no 'tcpmsim_version' attribute");
+    if (!file.nameExists("time"))  // a tcpmsim file of another kind (an analysis, a summary)
       throw std::runtime_error(path + " is not a tcpmsim record (it has no /time)");
     record.time = read_doubles(file, "time");
     record.scenario = read_text_attribute(file, "scenario");
@@ -110,9 +124,8 @@ RecordChannels read_record_channels(const std::string& path) {
     read_channels(file, "", record);
     for (const auto& input : read_record_inputs(file))
       add_input(record, input.path, input.description, !input.members.empty());
-  } catch (const H5::Exception& error) {
-    throw std::runtime_error("cannot read " + path + ": HDF5 " + error.getFuncName() + ": " +
-                             error.getDetailMsg());
+  } catch (const H5::Exception&) {
+    unreadable(path, "cannot read it as HDF5: damaged, truncated, or not an HDF5 file");
   }
   return record;
 }

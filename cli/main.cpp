@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -62,11 +63,12 @@ struct Options {
   std::vector<std::string> configs;  // run: one or more scenario files
   std::string output_directory = "results";
   int jobs = 1;
-  std::uint64_t max_output_bytes = 2'000'000'000;  // run: --max-output-size
-  std::string recover_output;                      // recover: -o
-  std::string data;           // fit: the measurement, in place of the fit file's
-  std::string fit_directory;  // fit: where its outputs go
-  std::string bench;          // measure: the bench file
+  // run: --max-output-size
+  std::uint64_t max_output_bytes = static_cast<std::uint64_t>(tcpmsim::kDefaultRecordLimit);
+  std::string recover_output;  // recover: -o
+  std::string data;            // fit: the measurement, in place of the fit file's
+  std::string fit_directory;   // fit: where its outputs go
+  std::string bench;           // measure: the bench file
   int fit_jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   tcpmsim::fit::DiscoverRequest discover;  // discover
   bool plots = true;
@@ -362,9 +364,10 @@ int measure(const Options& options) {
   auto units = std::make_shared<tcpmsim::UnitSystem>();
   const tcpmsim::Scenario scenario = load(options);
   const tcpmsim::fit::Bench bench = tcpmsim::fit::load_bench(options.bench, scenario, units);
+  tcpmsim::check_record_size(scenario, tcpmsim::kDefaultRecordLimit);  // its samples, in memory
   const std::string output =
       options.output.empty() ? "results/" + scenario.settings.name + ".csv" : options.output;
-  tcpmsim::create_parent_directories(output);
+  tcpmsim::prepare_output_file(output);  // before the run, as `run` checks its record's path
   const std::string partial = tcpmsim::partial_path(output);
   {
     std::ofstream file(partial);
@@ -447,6 +450,17 @@ CLI::App* add_analysis(CLI::App& app, const char* name, const char* description,
                       std::string("Output file (default: ") + default_output + ")");
   command->add_flag("-q,--quiet", quiet, "No tables");
   return command;
+}
+
+// A time on the command line: a finite number of seconds (CLI11 reads "nan" and "inf" as numbers).
+CLI::Validator finite_time() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double value = 0.0;
+        if (CLI::detail::lexical_cast(text, value) && std::isfinite(value)) return "";
+        return "expected a time in s, a finite number, got '" + text + "'";
+      },
+      "TIME");
 }
 
 // The command line as typed, each argument that needs it in single quotes: a file's provenance.
@@ -589,8 +603,9 @@ int main(int argc, char** argv) {
                    "Frequency response from this input (repeat for several); default without "
                    "--reference: every prescribed input the window excites")
       ->type_name("GROUP/NAME");
-  analyze_command->add_option("--from", analysis.request.from, "Window start [s]");
-  analyze_command->add_option("--to", analysis.request.to, "Window end [s]");
+  analyze_command->add_option("--from", analysis.request.from, "Window start [s]")
+      ->check(finite_time());
+  analyze_command->add_option("--to", analysis.request.to, "Window end [s]")->check(finite_time());
   analyze_command
       ->add_option("--method", analysis.request.method,
                    "auto (lines for multisines, else spectral), lines or spectral")

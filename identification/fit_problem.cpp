@@ -151,6 +151,23 @@ std::pair<std::size_t, std::size_t> samples_in(const MeasuredData& data, const T
           static_cast<std::size_t>(last - time.begin())};
 }
 
+std::string window_samples_problem(const MeasuredData& data, const TimeWindow& window,
+                                   std::size_t minimum, std::string_view needed_for) {
+  const auto [first, last] = samples_in(data, window);
+  const std::size_t held = last - first;
+  if (held >= minimum) return "";
+  const std::string window_text =
+      "the window [" + seconds_text(window.from) + ", " + seconds_text(window.to) + "]";
+  const std::string needs = std::string(needed_for) + " needs at least " + std::to_string(minimum);
+  if (held == 0)
+    return window_text +
+           " holds no sample of the data (a gap in their times, or a window between "
+           "two samples); " +
+           needs;
+  return window_text + " holds " + std::to_string(held) + " sample" + (held == 1 ? "" : "s") +
+         " of the data; " + needs;
+}
+
 std::vector<std::vector<double>> simulate_outputs(const FitProblem& problem,
                                                   const std::vector<double>& values,
                                                   const TimeWindow& window) {

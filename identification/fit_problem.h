@@ -92,4 +92,10 @@ std::vector<std::vector<double>> measured_outputs(const FitProblem& problem,
 // The indices of the measurement's samples inside `window`.
 std::pair<std::size_t, std::size_t> samples_in(const MeasuredData& data, const TimeWindow& window);
 
+// Why `window` cannot serve a fit: it holds fewer than `minimum` of the measurement's samples
+// (`needed_for` says what needs them: "a fit of 2 parameters"); "" when it holds enough. A
+// window inside a gap of the data holds none.
+std::string window_samples_problem(const MeasuredData& data, const TimeWindow& window,
+                                   std::size_t minimum, std::string_view needed_for);
+
 }  // namespace tcpmsim::fit

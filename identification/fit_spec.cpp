@@ -32,6 +32,22 @@ TimeWindow read_window(const ConfigNode& root, std::string_view key, const Measu
   return {from, to};
 }
 
+// The file `key` names, beside the fit file; fails at `key` when there is none.
+std::string existing_file(const ConfigNode& root, std::string_view key, std::string_view what) {
+  const std::string file = file_named_by(root.at(key));
+  if (!std::filesystem::is_regular_file(file))
+    root.at(key).fail("no " + std::string(what) + " file '" + file + "'");
+  return file;
+}
+
+// Fails at `key` when its window holds fewer than `minimum` of the data's samples.
+void require_samples(const ConfigNode& root, std::string_view key, const TimeWindow& window,
+                     const MeasuredData& data, std::size_t minimum, std::string_view needed_for) {
+  if (const std::string problem = window_samples_problem(data, window, minimum, needed_for);
+      !problem.empty())
+    root.at(key).fail(problem);
+}
+
 std::vector<FitOutput> read_outputs(const ConfigNode& root, const Scenario& model,
                                     const MeasuredData& data) {
   std::vector<FitOutput> outputs;
@@ -152,11 +168,11 @@ FitSpec load_fit(const std::string& file, const std::vector<std::string>& overri
                 "multistart", "gradient"});
   FitSpec spec;
   spec.file = file;
-  spec.model_file = file_named_by(root.at("model"));
+  spec.model_file = existing_file(root, "model", "scenario");
   if (!data_override.empty()) {
     spec.data_file = data_override;
   } else if (root.has("data")) {
-    spec.data_file = file_named_by(root.at("data"));
+    spec.data_file = existing_file(root, "data", "measurement");
   } else {
     root.fail("expected the measurement: a 'data' file here, or --data on the command line");
   }
@@ -182,6 +198,13 @@ FitSpec load_fit(const std::string& file, const std::vector<std::string>& overri
         std::make_shared<const Scenario>(load_scenario(spec.model_file, model_overrides, units));
   } catch (const ConfigError& error) {
     sweep::blame_set(root, "model", error);
+    if (!error.location().origin.empty()) {  // a value the fit sets, not one the user gave
+      root.at("model").fail("'" + spec.model_file +
+                            "' is no scenario the fit can run with its measurement.file and "
+                            "scenario.duration set: " +
+                            (error.key_path().empty() ? "" : error.key_path() + ": ") +
+                            error.problem());
+    }
     throw;
   }
   if (const std::string problem =
@@ -195,6 +218,12 @@ FitSpec load_fit(const std::string& file, const std::vector<std::string>& overri
   spec.problem.validation = validation;
   spec.problem.outputs = read_outputs(root, *model, *data);
   spec.problem.parameters = read_parameters(root, *model);
+  // Fewer samples than parameters + 1 fit them exactly and leave no residual to estimate errors.
+  const std::size_t fitted = spec.problem.parameters.size();
+  require_samples(root, "identification", identification, *data, fitted + 1,
+                  "a fit of " + std::to_string(fitted) + " parameter" + (fitted == 1 ? "" : "s"));
+  if (root.has("validation"))
+    require_samples(root, "validation", validation, *data, 1, "scoring it");
   spec.settings.threads = threads;
   read_multistart(root, spec.settings);
   spec.settings.gradient = read_gradient(root, spec.problem);

@@ -8,6 +8,7 @@
 #include <limits>
 #include <mutex>
 #include <numeric>
+#include <stdexcept>
 
 #include "sim/not_a_number.h"
 #include "sim/parallel_runs.h"
@@ -45,22 +46,30 @@ class Residuals {
       simulated = simulate_outputs(problem_, values, problem_.identification);
     } catch (const std::exception& error) {
       // A solver failure or a value the model refuses: a step Ceres must reject.
-      const std::lock_guard lock(mutex_);
-      if (first_failure_.empty()) first_failure_ = error.what();
+      note_failure(error.what());
       return false;
     }
     std::size_t at = 0;
     for (std::size_t k = 0; k < measured_.size(); ++k) {
       const double noise = problem_.outputs[k].noise;
-      for (std::size_t i = 0; i < measured_[k].size(); ++i)
+      for (std::size_t i = 0; i < measured_[k].size(); ++i) {
         residuals[at++] = (simulated[k][i] - measured_[k][i]) / noise;
+        if (!std::isfinite(residuals[at - 1])) {
+          note_failure(residual_problem(k, i, "is not a finite number",
+                                        ", simulated " + number_text(simulated[k][i])));
+          return false;
+        }
+      }
     }
-    return std::all_of(residuals, residuals + count_, [](double r) { return std::isfinite(r); });
+    return true;
   }
   double cost(const std::vector<double>& values) const {
     std::vector<double> residuals(count_);
     if (!evaluate(values, residuals.data())) return std::numeric_limits<double>::infinity();
-    return 0.5 * std::inner_product(residuals.begin(), residuals.end(), residuals.begin(), 0.0);
+    const double cost =
+        0.5 * std::inner_product(residuals.begin(), residuals.end(), residuals.begin(), 0.0);
+    if (!std::isfinite(cost)) note_failure(largest_residual_problem(residuals));
+    return cost;
   }
   // The weighted residuals' Jacobian (row-major, m x n) per SI unit of each parameter, from
   // forward sensitivities; the parameters are shared among `threads` runs.
@@ -79,8 +88,7 @@ class Residuals {
         results[r] = simulate_sensitivities(problem_, values, tracked[r], problem_.identification);
         ran[r] = 1;
       } catch (const std::exception& error) {
-        const std::lock_guard lock(mutex_);
-        if (first_failure_.empty()) first_failure_ = error.what();
+        note_failure(error.what());
       }
     });
     if (std::find(ran.begin(), ran.end(), 0) != ran.end()) return false;
@@ -104,6 +112,35 @@ class Residuals {
   }
 
  private:
+  void note_failure(const std::string& failure) const {
+    const std::lock_guard lock(mutex_);
+    if (first_failure_.empty()) first_failure_ = failure;
+  }
+  // What is wrong with residual i of output k ("is not a finite number"), with the values.
+  std::string residual_problem(std::size_t k, std::size_t i, const std::string& wrong,
+                               const std::string& values) const {
+    const FitOutput& output = problem_.outputs[k];
+    const std::size_t sample = samples_in(*problem_.data, problem_.identification).first + i;
+    return "the residual of " + output.output + " against the measured " + output.channel +
+           " at t = " + number_text(problem_.data->time()[sample]) + " s " + wrong + " (measured " +
+           number_text(measured_[k][i]) + values + " " + output.unit + ", noise " +
+           number_text(output.noise) + " " + output.unit + ")";
+  }
+  // The largest of finite residuals whose squares sum beyond a double.
+  std::string largest_residual_problem(const std::vector<double>& residuals) const {
+    const auto largest = static_cast<std::size_t>(
+        std::max_element(residuals.begin(), residuals.end(),
+                         [](double a, double b) { return std::abs(a) < std::abs(b); }) -
+        residuals.begin());
+    std::size_t k = 0, i = largest;
+    while (i >= measured_[k].size()) i -= measured_[k++].size();
+    return residual_problem(k, i,
+                            "is " + number_text(std::abs(residuals[largest])) +
+                                " noise widths: the squared "
+                                "residuals overflow",
+                            "");
+  }
+
   const FitProblem& problem_;
   std::vector<std::vector<double>> measured_;
   std::size_t count_ = 0;
@@ -383,6 +420,17 @@ std::pair<bool, std::string> choose_gradient(const FitProblem& problem, Gradient
   return {false, "finite differences (no forward sensitivities: " + unavailable + ")"};
 }
 
+// A problem whose windows hold too few samples is the caller's mistake (load_fit refuses it at
+// its key): std::invalid_argument, never a score of no samples.
+void check_windows(const FitProblem& problem) {
+  std::string problem_text =
+      window_samples_problem(*problem.data, problem.identification, 1, "the identification window");
+  if (problem_text.empty() && problem.validation.to > problem.validation.from)
+    problem_text =
+        window_samples_problem(*problem.data, problem.validation, 1, "the validation window");
+  if (!problem_text.empty()) throw std::invalid_argument(problem_text);
+}
+
 }  // namespace
 
 WindowScore score_window(const FitProblem& problem, const std::vector<double>& values,
@@ -391,6 +439,7 @@ WindowScore score_window(const FitProblem& problem, const std::vector<double>& v
 }
 
 FitResult fit_model(const FitProblem& problem, const FitSettings& settings) {
+  check_windows(problem);
   const auto [sensitivities, gradient] = choose_gradient(problem, settings.gradient);
   const Residuals residuals(problem);
   const auto points = starting_points(problem, settings);

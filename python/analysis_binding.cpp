@@ -7,6 +7,7 @@
 
 #include "analysis/record_analysis.h"
 #include "python/bindings.h"
+#include "sim/config/config_error.h"
 
 namespace py = pybind11;
 
@@ -86,6 +87,11 @@ RecordChannels channels_of(const py::object& source) {
     const auto& result = source.cast<const PyResult&>();
     return memory_record_channels(*result.scenario, *result.run);
   }
+  if (!py::isinstance<py::str>(source) && !py::hasattr(source, "__fspath__"))
+    throw UsageError(
+        "analyze: source: expected a Result or a record's path (str or os.PathLike), "
+        "got " +
+        py::repr(source).cast<std::string>());
   return read_record_channels(py::str(source).cast<std::string>());  // a path
 }
 

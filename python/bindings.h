@@ -52,8 +52,10 @@ struct PyResult {
   std::shared_ptr<const Scenario> scenario;
 };
 
-// Integrates with the GIL released; Ctrl-C interrupts the run (KeyboardInterrupt).
-PyResult run_scenario(const std::shared_ptr<const Scenario>& scenario);
+// Integrates with the GIL released; Ctrl-C interrupts the run (KeyboardInterrupt). A run whose
+// samples would exceed `limit_bytes` raises ConfigError before it starts, as `tcpmsim run`.
+PyResult run_scenario(const std::shared_ptr<const Scenario>& scenario,
+                      double limit_bytes = kDefaultRecordLimit);
 // Runs on `jobs` threads (the sweeps' run pool), the GIL released; a solver failure is that
 // result's status, not an exception.
 std::vector<PyResult> run_scenarios(const std::vector<std::shared_ptr<const Scenario>>& scenarios,

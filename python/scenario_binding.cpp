@@ -125,11 +125,11 @@ std::shared_ptr<const Scenario> PyScenario::with(const std::vector<std::string>&
   return load(overrides);
 }
 
-PyResult run_scenario(const std::shared_ptr<const Scenario>& scenario) {
+PyResult run_scenario(const std::shared_ptr<const Scenario>& scenario, double limit_bytes) {
   auto run = std::make_shared<MemoryRun>();
   {
     const py::gil_scoped_release released;
-    *run = run_in_memory(*scenario, signal_check());
+    *run = run_in_memory(*scenario, signal_check(), limit_bytes);
   }
   raise_pending_interrupt();
   return {std::move(run), scenario};
@@ -171,9 +171,15 @@ void bind_scenario(py::module_& module) {
           "from_yaml",
           [](const py::object& source, const py::object& settings) {
             std::vector<std::string> overrides;
+            if (!settings.is_none() && !py::isinstance<py::dict>(settings))
+              throw py::type_error(
+                  "set: expected a dict of path: value, e.g. {'measurement.file': 'm.csv'}; got " +
+                  py::repr(settings).cast<std::string>());
             if (!settings.is_none())
               for (const auto& [path, value] : settings.cast<py::dict>())
                 overrides.push_back(py::str(path).cast<std::string>() + "=" + override_text(value));
+            if (py::isinstance<py::bytes>(source))  // YAML text as read from a file or a pipe
+              return PyScenario::from_text(source.cast<std::string>(), std::move(overrides));
             if (py::isinstance<py::str>(source)) {
               const std::string text = source.cast<std::string>();
               if (text.find('\n') != std::string::npos)
@@ -184,7 +190,8 @@ void bind_scenario(py::module_& module) {
                                          std::move(overrides));
           },
           py::arg("source"), py::arg("set") = py::none(),
-          "A scenario from a file path, or from YAML text (any str holding a line break); `set` "
+          "A scenario from a file path, or from YAML text (bytes, or any str holding a line "
+          "break); `set` "
           "({'measurement.file': 'm.csv'}) applies values from the start, as --set does.")
       .def(
           "set",
@@ -203,20 +210,23 @@ void bind_scenario(py::module_& module) {
       .def("copy", [](const PyScenario& self) { return PyScenario(self); })
       .def(
           "run",
-          [failure = py::object(module.attr("SolverFailure"))](const PyScenario& self,
-                                                               const py::object& duration,
-                                                               const py::object& rate, bool check) {
-            PyResult result = run_scenario(self.with(run_overrides(duration, rate)));
+          [failure = py::object(module.attr("SolverFailure"))](
+              const PyScenario& self, const py::object& duration, const py::object& rate,
+              bool check, double max_output_size) {
+            PyResult result =
+                run_scenario(self.with(run_overrides(duration, rate)), max_output_size);
             if (check && result.run->status == "failed") raise_failure(failure, result);
             return result;
           },
           py::arg("duration") = py::none(), py::arg("output_rate") = py::none(),
-          py::arg("check") = true,
+          py::arg("check") = true, py::arg("max_output_size") = kDefaultRecordLimit,
           "Integrates the scenario and returns a Result (its samples by channel name). duration "
           "[s] and output_rate [Hz] override the file's (numbers in s and Hz, or text with a "
           "unit). "
           "If the solver gives up, raises SolverFailure (its `result` holds the samples up to "
-          "there), or with check=False returns the result with status 'failed'.")
+          "there), or with check=False returns the result with status 'failed'. A run whose "
+          "samples would exceed max_output_size bytes (2e9, as tcpmsim run's "
+          "--max-output-size) raises ConfigError before it starts.")
       .def_property_readonly("name",
                              [](const PyScenario& self) { return self.scenario().settings.name; })
       .def_property_readonly(

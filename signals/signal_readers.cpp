@@ -137,10 +137,30 @@ struct MultisineSettings {
   double f_low = 0.0, f_high = 0.0, phase_offset = 0.0;
   bool scaled = false;  // to [low, high] over duration; else offset and equal amplitudes
   double low = 0.0, high = 0.0, duration = 0.0, offset = 0.0, amplitude = 0.0;
+  double scanned = 0.0;  // unscaled: the run's duration, over which its range is checked
 };
+
+// Finding a multisine's range (MultisineSignal::range: to scale it to `range`, and for every
+// check of a drive's or a load's signal over the run) scans 16 points per period of its fastest
+// component over the duration, each summing every component. "" when that is within the limit
+// (about a second), else why not.
+std::string multisine_scan_problem(const MultisineSettings& s) {
+  constexpr double kMaxTerms = 1e8;
+  const double duration = s.scaled ? s.duration : s.scanned;
+  const double points = std::ceil(duration * s.f_high * 16.0);
+  const double terms = points * s.components;
+  if (terms <= kMaxTerms) return {};
+  return "finding the signal's range scans " + number_text(points) +
+         " points (16 per period of the band's upper end over " + number_text(duration) +
+         " s) of " + std::to_string(s.components) + " components = " + number_text(terms) +
+         " terms, over the limit of " + number_text(kMaxTerms) +
+         "; lower the band's upper end, the components or the duration";
+}
 
 std::unique_ptr<Signal> make_multisine(const MultisineSettings& s) {
   if (!(s.f_low < s.f_high)) throw std::invalid_argument("expected band lower < upper");
+  if (const std::string problem = multisine_scan_problem(s); !problem.empty())
+    throw std::invalid_argument(problem);
   const MultisineSignal unit_signal =
       MultisineSignal::schroeder(s.components, s.f_low, s.f_high, s.phase_offset);
   if (s.scaled) {
@@ -309,7 +329,10 @@ std::unique_ptr<Signal> multisine(const ConfigNode& node, std::string_view unit,
   } else {
     s.offset = declared.quantity(node, "offset", unit);
     s.amplitude = declared.quantity(node, "amplitude", unit);
+    s.scanned = context.duration;
   }
+  if (const std::string problem = multisine_scan_problem(s); !problem.empty())
+    node.at("band").fail(problem);
   return with_recipe(make_multisine(s), std::move(declared),
                      [s, phase_is_parameter](Values v, Parts) {
                        MultisineSettings changed = s;

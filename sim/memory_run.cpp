@@ -44,7 +44,9 @@ const RecordSeries* MemoryRun::find(const std::string& channel, std::size_t* ind
   return nullptr;
 }
 
-MemoryRun run_in_memory(const Scenario& scenario, const Integrator::Progress& progress) {
+MemoryRun run_in_memory(const Scenario& scenario, const Integrator::Progress& progress,
+                        double limit_bytes) {
+  check_record_size(scenario, limit_bytes);
   const auto started = std::chrono::steady_clock::now();
   MemoryRun run;
   run.series = record_layout(*scenario.system);

@@ -5,6 +5,7 @@
 
 #include "sim/integrator.h"
 #include "sim/io/record_layout.h"
+#include "sim/run.h"
 #include "sim/scenario.h"
 
 namespace tcpmsim {
@@ -29,8 +30,11 @@ struct MemoryRun {
 
 // Integrates `scenario` in a fresh context, keeping every recorded output. A solver failure or a
 // StopRequest from `progress` ends the run with that status rather than throwing; the samples
-// before it are kept.
-MemoryRun run_in_memory(const Scenario& scenario, const Integrator::Progress& progress = {});
+// before it are kept. Before anything is allocated, throws the ConfigError of
+// check_record_size (sim/run.h) when the samples would exceed `limit_bytes`, as `tcpmsim run`
+// refuses such a record.
+MemoryRun run_in_memory(const Scenario& scenario, const Integrator::Progress& progress = {},
+                        double limit_bytes = kDefaultRecordLimit);
 
 // Writes `run` (a run of `scenario`) as the record `tcpmsim run` writes: the same datasets,
 // inputs, attributes and ending, so that the file is the one a command-line run would leave

@@ -49,8 +49,11 @@ struct RecordSize {
   double bytes() const { return 8.0 * samples * columns; }
 };
 RecordSize estimate_record_size(const Scenario& scenario);
+// The limit a record (or a run kept in memory) has unless the user raises it: 2 GB.
+inline constexpr double kDefaultRecordLimit = 2e9;
 // Throws ConfigError at output.rate when the record would exceed `limit_bytes`, naming the
-// estimate, the limit and what to change.
+// estimate, the limit and what to change. Every run checks it before it starts: `tcpmsim run`,
+// a batch, and a run in memory (sim/memory_run.h, the Python module's).
 void check_record_size(const Scenario& scenario, double limit_bytes);
 // "2.6 GB", "512 kB" (decimal units).
 std::string byte_text(double bytes);

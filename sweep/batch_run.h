@@ -17,8 +17,9 @@ struct BatchOptions {
   std::vector<std::string> overrides;  // --set, for every file
   std::string output_directory = "results";
   int threads = 1;
-  double max_record_bytes = 2e9;  // each record's limit (check_record_size), before any run
-  std::string invocation = {};    // the command line, written into each record
+  // Each record's limit (check_record_size), before any run.
+  double max_record_bytes = kDefaultRecordLimit;
+  std::string invocation = {};  // the command line, written into each record
 };
 
 struct BatchRun {

@@ -5,6 +5,8 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "sim/value_check.h"
+
 namespace tcpmsim::sweep {
 namespace {
 
@@ -71,7 +73,24 @@ std::vector<double> normal_values(double mean, double standard_deviation, int co
   return values;
 }
 
+std::string grid_size_problem(const std::vector<AxisGroup>& groups) {
+  double runs = 1.0;  // a double: a product of counts under a million each cannot overflow it
+  std::string factors;
+  for (const auto& group : groups) {
+    const auto rows = row_count(group);
+    runs *= static_cast<double>(rows);
+    factors += (factors.empty() ? "" : " x ") + std::to_string(rows);
+  }
+  if (runs <= kMaxRuns) return "";
+  return "the axes make " + factors + " = " + number_text(runs) + " runs, over the limit of " +
+         number_text(kMaxRuns) +
+         " runs a sweep (each is a simulation, and every run's values are held in memory); "
+         "give fewer values, zip axes (combine: zip), or split the sweep";
+}
+
 std::vector<std::vector<double>> grid_runs(const std::vector<AxisGroup>& groups) {
+  if (const std::string problem = grid_size_problem(groups); !problem.empty())
+    throw std::invalid_argument(problem);
   std::vector<std::size_t> rows;
   std::size_t total = 1;
   for (const auto& group : groups) {

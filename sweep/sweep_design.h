@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "sim/random_stream.h"
@@ -33,9 +34,19 @@ std::vector<double> normal_values(double mean, double standard_deviation, int co
 // length.
 using AxisGroup = std::vector<std::vector<double>>;
 
+// The most runs a sweep may make: each is a simulation, and every run's values are held in
+// memory before the first starts.
+inline constexpr double kMaxRuns = 1e6;
+
+// "" when a grid over `groups` makes at most kMaxRuns runs, else the product of the groups'
+// lengths and the limit ("the axes make 1000 x 1000 x 1000 = 1e+09 runs, over ..."). Computed
+// without building a run. Throws std::invalid_argument if a group's columns differ in length.
+std::string grid_size_problem(const std::vector<AxisGroup>& groups);
+
 // The runs of a grid over groups: every combination of one row from each group, the last
 // group varying fastest. Each run lists the values of every axis, groups in order. Throws
-// std::invalid_argument if a group's columns differ in length.
+// std::invalid_argument if a group's columns differ in length, or (before allocating) when
+// grid_size_problem says the grid is too large.
 std::vector<std::vector<double>> grid_runs(const std::vector<AxisGroup>& groups);
 
 }  // namespace tcpmsim::sweep

@@ -252,6 +252,8 @@ void read_axes(const ConfigNode& root, const std::vector<SweepScenario>& scenari
     }
     if (zipped) groups.push_back(std::move(all));
   }
+  if (const std::string problem = grid_size_problem(groups); !problem.empty())
+    root.at("axes").fail(problem);
   for (auto& indices : grid_runs(groups)) {
     std::vector<double> run;
     for (std::size_t a = 0; a < axes.size(); ++a)

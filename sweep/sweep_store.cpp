@@ -109,6 +109,7 @@ SweepStore::SweepStore(const SweepSpec& spec, std::string output, Access access)
     : spec_(spec), output_(std::move(output)), parts_(output_ + ".parts") {
   namespace fs = std::filesystem;
   if (access == Access::join) return;
+  prepare_output_file(output_);  // a directory or a device is refused before any run, as by run
   const bool resume = access == Access::resume;
   const std::string identity_file = parts_ + "/" + kIdentityFile;
   const std::string identity = sweep_identity(spec);

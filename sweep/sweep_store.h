@@ -24,7 +24,8 @@ class SweepStore {
  public:
   // create: a new sweep (fails if parts of an interrupted sweep are there); resume: finish one
   // (fails if its parts are of another sweep); join: the store another process (MPI rank 0)
-  // created or resumed.
+  // created or resumed. Creating or resuming checks the output path first (prepare_output_file):
+  // a directory or a device is refused before any run.
   enum class Access { create, resume, join };
   SweepStore(const SweepSpec& spec, std::string output, Access access);
 

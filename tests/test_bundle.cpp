@@ -381,6 +381,12 @@ TEST_CASE("Bad bundle sections are refused with one clear message") {
   CHECK_THAT(config_error(replaced(base, "wiring: parallel, voltage: 1 V",
                                    "wiring: parallel, voltage: 1 V, current: 1 A")),
              Catch::Contains("exactly one of voltage, current or power"));
+  // Issue 31: a hundred thousand members took minutes and 3 GB to build before any run.
+  CHECK_THAT(config_error(base, {"bundle.count=100000"}),
+             Catch::Contains("command line (--set bundle.count=100000): error: bundle.count: "
+                             "expected an integer, a value in [1, 10000] (the limit: each member "
+                             "is a muscle with its own components: half a millisecond and 30 kB "
+                             "a member to build), got '100000'"));
   CHECK_THAT(config_error(replaced(base, "  thermal: {shielding: 0.3}\n",
                                    "  thermal: {shielding: 0.3}\n  spread: {mechanics.k9: "
                                    "{distribution: normal, relative: 0.1}}\n")),

@@ -129,6 +129,19 @@ TEST_CASE("Coupling biases self-sensed deflection; the estimator's own model of 
   }
 }
 
+TEST_CASE("A coil of more turns than the mutual-inductance table can sum is refused at turns") {
+  // Issue 31: 1e8 turns ran the ring sums for minutes before anything was refused.
+  for (const char* key : {"bundle.magnetic.coil.turns",
+                          "bundle.electrical.estimator."
+                          "mutual_compensation.coil.turns"}) {
+    CHECK_THAT(
+        config_error(coupled_bundle(2, kCompensation), {std::string(key) + "=1e8"}),
+        Catch::StartsWith("command line (--set " + std::string(key) + "=1e8): error: " + key +
+                          ": expected a value in [1, 10000] (the limit: the table of "
+                          "M(x) sums an integral per ring offset at 49 lengths), got '1e8'"));
+  }
+}
+
 TEST_CASE("Magnetic coupling needs henries and a bundle member; coils must not overlap") {
   CHECK_THAT(config_error(coupled_bundle(2, ""), {"bundle.magnetic.coil.radius=0.8 mm"}),
              Catch::Contains("the pitch must exceed the coil's outer diameter"));

@@ -361,4 +361,9 @@ TEST_CASE("A control byte in a file is refused where it is, and never printed ra
   CHECK(std::string(ConfigError({"f.yaml", 1, 2, {}}, "a\x1b[31m", "got '\x07\t'").what()) ==
         "f.yaml:1:2: error: a\\x1b[31m: got '\\x07\\t'");
   CHECK(printable(std::string("ok \x7f") + '\0') == "ok \\x7f\\x00");
+  // Issue 31: bytes of no UTF-8 sequence (binary garbage in a CSV) are escaped; UTF-8 stays.
+  CHECK(printable("23 \xc2\xb0"
+                  "C, 5 \xc2\xb5m \xff\xfe\xe2\x82") ==
+        "23 \xc2\xb0"
+        "C, 5 \xc2\xb5m \\xff\\xfe\\xe2\\x82");
 }

@@ -62,6 +62,22 @@ TEST_CASE("A multisine of more components than a run can sum is refused with the
              Catch::Contains("drive.power.components") && Catch::Contains("1000000000"));
 }
 
+TEST_CASE("A multisine whose range would take hours to find is refused at its band") {
+  // Issue 31: a band up to 1e9 Hz hung `validate` in the scan for the signal's extrema, which
+  // scaling to a range and every check of a drive's signal over the run make.
+  CHECK_THAT(config_error(with_power("{type: multisine, components: 10, band: [0.01 Hz, 1e9 Hz], "
+                                     "range: [0 W, 1 W], duration: 100 s}")),
+             Catch::StartsWith("test.yaml:") &&
+                 Catch::Contains("error: drive.power.band: finding the signal's range scans "
+                                 "1.6e+12 points (16 per period of the band's upper end over 100 "
+                                 "s) of 10 components = 1.6e+13 terms, over the limit of 1e+08"));
+  CHECK_THAT(config_error(with_power("{type: multisine, components: 10, band: [0.01 Hz, 1e9 Hz], "
+                                     "offset: 0.5 W, amplitude: 0.05 W}")),
+             Catch::Contains("error: drive.power.band: finding the signal's range scans"));
+  CHECK(config_error(with_power("{type: multisine, components: 10, band: [0.01 Hz, 1 kHz], "
+                                "range: [0.1 W, 1 W], duration: 100 s}")) == "no error");
+}
+
 TEST_CASE("A random-step sequence of more samples than memory holds is refused at sample_rate") {
   const std::string message =
       config_error(with_power("{type: random_steps, range: [0 W, 1 W], process_time_constant: "

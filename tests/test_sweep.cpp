@@ -129,6 +129,19 @@ TEST_CASE("a grid takes every combination, the last axis fastest; zipped axes mo
   CHECK(grid_runs({}).size() == 1);  // no axis: the scenario as it is
 }
 
+TEST_CASE("a grid of more than a million runs is refused before one is made", "[sweep]") {
+  // Issue 31: three axes of a thousand values each asked for 24 GB at once (std::bad_alloc).
+  const AxisGroup thousand{std::vector<double>(1000, 1.0)};
+  const std::vector<AxisGroup> huge{thousand, thousand, thousand};
+  const std::string problem =
+      "the axes make 1000 x 1000 x 1000 = 1e+09 runs, over the limit of 1e+06 runs a sweep "
+      "(each is a simulation, and every run's values are held in memory); give fewer values, "
+      "zip axes (combine: zip), or split the sweep";
+  CHECK(grid_size_problem(huge) == problem);
+  CHECK_THROWS_WITH(grid_runs(huge), problem);
+  CHECK(grid_size_problem({thousand, thousand}).empty());  // a million is allowed
+}
+
 TEST_CASE("a sweep file's axes, derived parameters and metrics are read with units", "[sweep]") {
   SweepDirectory directory;
   const auto spec = load_sweep(directory.write("grid.yaml", kGridSweep), {}, shared_units());
@@ -153,6 +166,16 @@ TEST_CASE("a bad sweep file gets one located error before any run", "[sweep]") {
                  Catch::Contains("cannot be converted to 'W/K'"));
   CHECK_THAT(sweep_error(axis("{parameter: muscle.thermal.conductance, values: []}")),
              Catch::Contains("an empty list of values"));
+  // Axes each within their caps whose product is not: at the axes, with the product and cap.
+  CHECK_THAT(sweep_error(head + "axes:\n"
+                                "  - {parameter: muscle.thermal.conductance, range: {from: 1 W/K, "
+                                "to: 2 W/K, count: 1000}}\n"
+                                "  - {parameter: muscle.thermal.heat_capacity, range: {from: 1 "
+                                "J/K, to: 2 J/K, count: 1000}}\n"
+                                "  - {parameter: muscle.mechanics.k1, range: {from: 1 N/m, to: 2 "
+                                "N/m, count: 1000}}\n"),
+             Catch::Contains("sweep.yaml:4:3: error: axes: the axes make 1000 x 1000 x 1000 = "
+                             "1e+09 runs, over the limit of 1e+06 runs a sweep"));
   CHECK_THAT(
       sweep_error(axis("{parameter: muscle.thermal.conductance, range: {from: 1 W/K, to: 2 W/K, "
                        "count: 0}}")),

@@ -21,6 +21,13 @@ namespace {
 constexpr const char* kDriveCategory = "drive";
 constexpr const char* kEstimatorCategory = "estimator";
 
+// The most members a bundle may have: building one takes about half a millisecond and 30 kB a
+// member before it runs (10 000: a few seconds and 300 MB), and its run far more.
+constexpr double kMaxMembers = 1e4;
+constexpr const char* kMembersCost =
+    "each member is a muscle with its own components: half a millisecond and 30 kB a member to "
+    "build";
+
 // "m0" ... "m9", "m00" ... "m18": as many digits as the largest index needs.
 std::vector<std::string> member_ids(int count) {
   const int digits = std::max(1, static_cast<int>(std::to_string(count - 1).size()));
@@ -163,7 +170,8 @@ BundleAir::Fan expect_fan_command(const ConfigNode& node, const std::string& nam
 
 void build_bundle(const ConfigNode& node, const std::string& name, ScenarioBuilder& build) {
   node.declare({"count", "packing", "muscle", "spread", "thermal", "electrical", "magnetic"});
-  const int count = static_cast<int>(node.integer("count", ValueCheck::between(1, 100000)));
+  const int count =
+      static_cast<int>(node.integer("count", ValueCheck::count(kMaxMembers, kMembersCost)));
   Bundle bundle{name, {}, read_cross_section(node.at("packing"), count)};
   const auto ids = member_ids(count);
   for (const auto& id : ids) bundle.members.push_back(name + "/" + id);

@@ -15,6 +15,9 @@ constexpr int kNodes = 25;          // Chebyshev nodes over [l0 / 4, 4 l0]
 constexpr double kShortest = 0.25;  // of the rest length
 constexpr double kLongest = 4.0;
 constexpr double kTableTolerance = 1e-6;  // relative, between the nodes
+// The most turns a coil may have: the table evaluates M at 2 kNodes - 1 lengths, each a sum of a
+// ring integral per offset between rings, `turns` of them (as a spring's windings).
+constexpr double kMaxTurns = 1e4;
 
 // Node k of n on [a, b] (Chebyshev points of the first kind).
 double chebyshev_node(int k, int n, double a, double b) {
@@ -73,7 +76,10 @@ std::shared_ptr<const NeighbourMutual> NeighbourMutual::from_config(const Config
   coil.declare({"radius", "turns", "length", "wire_diameter"});
   inductance::CoilGeometry geometry;
   geometry.radius = coil.quantity("radius", "m", ValueCheck::positive());
-  geometry.turns = coil.number("turns", ValueCheck::at_least(1.0));
+  geometry.turns = coil.number(
+      "turns",
+      ValueCheck::count(kMaxTurns, "the table of M(x) sums an integral per ring offset at " +
+                                       std::to_string(2 * kNodes - 1) + " lengths"));
   geometry.length = coil.quantity("length", "m", ValueCheck::positive());
   geometry.wire_diameter = coil.quantity("wire_diameter", "m", ValueCheck::positive());
   if (!(separation > 2.0 * geometry.radius + geometry.wire_diameter)) {

@@ -71,6 +71,12 @@ RecoveredRecord cut_and_close(const std::string& partial, const std::string& wor
            "this is not a tcpmsim record");
   }
   H5::Group root = file.openGroup("/");
+  // A record states what made it when it is created, before its first sample.
+  for (const char* attribute : {"tcpmsim_version", "config"}) {
+    if (!root.attrExists(attribute))
+      refuse(partial, std::string("not a tcpmsim record: it has no '") + attribute +
+                          "' attribute (tcpmsim writes it when it creates a record)");
+  }
   if (!file.nameExists("time")) refuse(partial, "not a tcpmsim record: no /time dataset");
   if (root.attrExists("status")) {
     refuse(partial, "the record already has a status (it was closed): nothing to recover");

@@ -15,7 +15,8 @@ struct RecoveredRecord {
 // times were flushed (the longest run of increasing times that every series holds), status
 // "interrupted", `interruption` saying how, `time_reached` and `samples`. The partial file is
 // removed once the record is written. `output` overrides the record's path. Throws ConfigError
-// (located at the file) when `partial` is not a tcpmsim record or already has a status, and
+// (located at the file) when `partial` is not a tcpmsim record (no tcpmsim_version or config
+// attribute, no /time) or already has a status, and
 // std::runtime_error when the record cannot be written or would replace an existing file.
 RecoveredRecord recover_partial_record(const std::string& partial, const std::string& output = "");
 

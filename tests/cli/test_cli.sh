@@ -159,6 +159,12 @@ printf 'time[s],power[W],deflection[mm],force[mN]\n0,1,20,107\n1,1,nan,107\n' >"
 expect 3 "a bad measurement is a data-file error" -- "$tcpmsim" fit "$discover/ch7_fit.yaml" --data "$work/bad.csv" --out "$work/fit"
 contains "$work/err" "bad.csv:3:5: error: field 3 (deflection [mm]): expected a finite number, got 'nan'" "the data error is located"
 [[ ! -e $work/fit ]] && echo "ok: nothing written on a data error" || { echo "FAIL: a fit directory after a data error"; failures=$((failures + 1)); }
+# Issue 31: bytes of no UTF-8 sequence are quoted escaped, never echoed raw.
+printf 'time[s],power[W],deflection[mm],force[mN]\n0,1,20,107\n1,1,20,\377\376\200\n' >"$work/garbage.csv"
+expect 3 "binary garbage in a measurement is a data-file error" -- "$tcpmsim" fit "$discover/ch7_fit.yaml" --data "$work/garbage.csv" --out "$work/fit"
+contains "$work/err" 'garbage.csv:3:8: error: field 4 (force [mN]):' "the garbage is located"
+contains "$work/err" "'\xff\xfe\x80'" "the garbage is escaped"
+iconv -f UTF-8 -t UTF-8 "$work/err" >/dev/null 2>&1 && echo "ok: the message is UTF-8" || { echo "FAIL: raw bytes in the message"; failures=$((failures + 1)); }
 expect 3 "a model without its measurement is a configuration error" -- "$tcpmsim" run "$discover/ch7_base.yaml" -o "$work/none.h5"
 contains "$work/err" "expected a file to replay: 'file', or the scenario's measurement.file" "the error says how to give the measurement"
 expect 0 "the model runs alone with --set measurement.file" -- "$tcpmsim" run "$discover/ch7_base.yaml" --set "measurement.file=$work/bench.h5" -o "$work/base.h5" --quiet
@@ -174,6 +180,66 @@ contains "$work/out" "muscle.mechanics.k1" "the summary lists the parameters"
 contains "$work/out" "validation     force" "the summary scores the validation window"
 [[ -s $work/fit/fit.json && -s $work/fit/fitted.yaml && -s $work/fit/fit.h5 ]] && echo "ok: fit.json, fitted.yaml, fit.h5" || { echo "FAIL: fit outputs missing"; failures=$((failures + 1)); }
 expect 0 "the fitted scenario runs as it is" -- "$tcpmsim" run "$work/fit/fitted.yaml" -o "$work/fitted.h5" --quiet
+# Issue 31: a window that holds no sample (between two samples, or inside a gap in the data's
+# times) is a located configuration error, not a crash, and nothing is written.
+fit_file() {  # fit_file NAME IDENTIFICATION [VALIDATION]: a one-parameter fit of the base model
+  printf 'model: %s\noutputs: [{channel: force, output: load.force, noise: 1 mN}]\nparameters: [{path: muscle.mechanics.k1, bounds: [5 N/m, 20 N/m]}]\nidentification: %s\n' \
+    "$discover/ch7_base.yaml" "$2" >"$work/$1"
+  [[ -n ${3:-} ]] && printf 'validation: %s\n' "$3" >>"$work/$1"
+}
+fit_file between.yaml '[100.01 s, 100.02 s]'
+expect 3 "an identification window between two samples is a configuration error" -- "$tcpmsim" fit \
+  "$work/between.yaml" --data "$work/measured.csv" --out "$work/fit_between"
+contains "$work/err" "between.yaml:4:17: error: identification: the window [100.01 s, 100.02 s] holds no sample of the data" "the empty identification window is located"
+fit_file empty_validation.yaml '[0 s, 400 s]' '[500.01 s, 500.02 s]'
+expect 3 "a validation window without a sample is a configuration error" -- "$tcpmsim" fit \
+  "$work/empty_validation.yaml" --data "$work/measured.csv" --out "$work/fit_between"
+contains "$work/err" "empty_validation.yaml:5:13: error: validation: the window [500.01 s, 500.02 s] holds no sample of the data" "the empty validation window is located"
+awk -F, 'NR == 1 || $1 < 100 || $1 > 300' "$work/measured.csv" >"$work/gap.csv"
+fit_file in_gap.yaml '[0 s, 80 s]' '[150 s, 250 s]'
+expect 3 "a window inside a gap in the data is a configuration error" -- "$tcpmsim" fit \
+  "$work/in_gap.yaml" --data "$work/gap.csv" --out "$work/fit_between"
+contains "$work/err" "in_gap.yaml:5:13: error: validation: the window [150 s, 250 s] holds no sample of the data" "the window inside the gap is located"
+[[ ! -e $work/fit_between ]] && echo "ok: nothing written for an empty window" || { echo "FAIL: a fit directory after a window error"; failures=$((failures + 1)); }
+# Issue 31: a window of fewer samples than parameters + 1 fits them exactly, with no residual left
+# to estimate their errors: refused, not reported as identified.
+fit_file one_sample.yaml '[100 s, 100.03 s]'
+expect 3 "an identification window of one sample for one parameter is a configuration error" -- \
+  "$tcpmsim" fit "$work/one_sample.yaml" --data "$work/measured.csv" --out "$work/fit_between"
+contains "$work/err" "one_sample.yaml:4:17: error: identification: the window [100 s, 100.03 s] holds 1 sample of the data; a fit of 1 parameter needs at least 2" "the too-short window is located, with the count it needs"
+[[ ! -e $work/fit_between ]] && echo "ok: nothing written for a window too short" || { echo "FAIL: a fit directory after a window error"; failures=$((failures + 1)); }
+# Issue 31: the model file is located at the fit file's model key, whatever is wrong with it.
+sed "s|^model: .*|model: nowhere.yaml|" "$work/one_sample.yaml" >"$work/no_model.yaml"
+expect 3 "a fit whose model file is missing is a configuration error" -- "$tcpmsim" fit \
+  "$work/no_model.yaml" --data "$work/measured.csv" --out "$work/fit_between"
+contains "$work/err" "no_model.yaml:1:8: error: model: no scenario file '$work/nowhere.yaml'" "the missing model is located at its key"
+sed "s|^model: .*|model: $source_dir/configs/sweeps/design_example.yaml|" "$work/one_sample.yaml" >"$work/sweep_model.yaml"
+expect 3 "a sweep file as the model is a configuration error" -- "$tcpmsim" fit \
+  "$work/sweep_model.yaml" --data "$work/measured.csv" --out "$work/fit_between"
+contains "$work/err" "sweep_model.yaml:1:8: error: model: '$source_dir/configs/sweeps/design_example.yaml' is no scenario the fit can run" "the wrong model is blamed at its key, not on a --set never typed"
+# Issue 31: a measured force so large that the squared residuals overflow: the fit fails with
+# the sample and the values that did it, not an empty reason.
+awk -F, -v OFS=, 'NR == 101 { $4 = "1e308" } { print }' "$work/measured.csv" >"$work/huge_force.csv"
+fit_file huge_force.yaml '[0 s, 400 s]'
+expect 1 "a fit whose residuals overflow fails with its reason" -- "$tcpmsim" fit \
+  "$work/huge_force.yaml" --data "$work/huge_force.csv" --out "$work/fit_huge" --set multistart.starts=0
+contains "$work/err" "the first failure: the residual of load.force against the measured force at t = 6.1875 s is 1e+308 noise widths: the squared residuals overflow (measured 1e+305 N, noise 0.001 N)" "the reason names the sample and the values"
+# Issue 31: a sweep whose axes multiply beyond the cap is refused before a run is made.
+printf 'sweep: {name: huge}\nscenario: %s\naxes:\n  - {parameter: muscle.thermal.conductance, range: {from: 1 W/K, to: 2 W/K, count: 1000}}\n  - {parameter: muscle.thermal.heat_capacity, range: {from: 1 J/K, to: 2 J/K, count: 1000}}\n  - {parameter: muscle.mechanics.k1, range: {from: 1 N/m, to: 2 N/m, count: 1000}}\n' \
+  "$source_dir/configs/sweeps/thermal_step.yaml" >"$work/huge_sweep.yaml"
+expect 3 "a sweep of 1e9 runs is a configuration error" -- "$tcpmsim" sweep "$work/huge_sweep.yaml" -o "$work/huge.h5"
+contains "$work/err" "huge_sweep.yaml:4:3: error: axes: the axes make 1000 x 1000 x 1000 = 1e+09 runs, over the limit of 1e+06 runs a sweep" "the sweep's size is refused with the product and the cap"
+[[ ! -e $work/huge.h5 && ! -e $work/huge.h5.partial ]] && echo "ok: no sweep file after the size error" || { echo "FAIL: a sweep file after the size error"; failures=$((failures + 1)); }
+# Issue 31: an output path that cannot be a file is refused before any work, as run refuses it.
+mkdir "$work/outdir"
+expect 4 "measure -o a directory is an output error before the run" -- "$tcpmsim" measure "$discover/ch7_base.yaml" \
+  --set "measurement.file=$work/bench.h5" --bench "$discover/ch7_bench.yaml" -o "$work/outdir"
+contains "$work/err" "tcpmsim: cannot write $work/outdir: it is a directory" "measure names the output and why"
+[[ ! -e $work/outdir.partial ]] && echo "ok: no partial measurement" || { echo "FAIL: measure left $work/outdir.partial"; failures=$((failures + 1)); }
+expect 4 "sweep -o a directory is an output error before any run" -- "$tcpmsim" sweep \
+  "$source_dir/configs/sweeps/thermal_hA_C.yaml" -o "$work/outdir" --quiet
+contains "$work/err" "tcpmsim: cannot write $work/outdir: it is a directory" "sweep names the output and why"
+[[ ! -e $work/outdir.parts ]] && echo "ok: no sweep run before the output error" || { echo "FAIL: the sweep ran before refusing its output"; failures=$((failures + 1)); }
 # discover: a request it cannot serve is refused before any fit, and nothing is written.
 expect 2 "discover with an input the model does not replay is a usage error" -- "$tcpmsim" discover \
   --model "$discover/ch7_base.yaml" --data "$work/measured.csv" --inputs power,force --outputs force \
@@ -220,6 +286,43 @@ contains "$work/err" "has no channel 'muscle/forse'; it has" "the analysis error
 expect 2 "analyze of a file that is no record is a usage error" -- "$tcpmsim" analyze "$work/analysis.h5" \
   --response muscle/force -o "$work/none_analysis.h5"
 contains "$work/err" "is not a tcpmsim record" "the error says what the file is not"
+# Issue 31: a damaged file, or an HDF5 file tcpmsim did not write, is a data-file error (exit 3)
+# whose message says so in its own words.
+head -c 2000 "$work/steps.h5" >"$work/damaged.h5"
+expect 3 "analyze of a damaged file is a data-file error" -- "$tcpmsim" analyze "$work/damaged.h5" \
+  --response muscle/force -o "$work/none_analysis.h5"
+contains "$work/err" "$work/damaged.h5: error: cannot read it as HDF5: damaged, truncated, or not an HDF5 file" "the damaged file is named and why"
+grep -q "H5File" "$work/err" && { echo "FAIL: HDF5's own words leak"; failures=$((failures + 1)); } || echo "ok: no HDF5 function name in the message"
+rm -f "$work/damaged.h5"
+# Issue 31: a window that holds too little is named by the options that gave it.
+expect 2 "analyze of a window past the record's end is a usage error" -- "$tcpmsim" analyze "$work/steps.h5" \
+  --response muscle/force --reference drive/power --from 700 -o "$work/none_analysis.h5"
+contains "$work/err" "steps.h5: fewer than two samples in the window (--from 700 s)" "the window error names --from"
+expect 2 "analyze of a window where nothing varies is a usage error" -- "$tcpmsim" analyze "$work/steps.h5" \
+  --response muscle/force --from 0 --to 1 -o "$work/none_analysis.h5"
+contains "$work/err" "in the window (--from 0 s --to 1 s)" "the window error names --from and --to"
+# Issue 31: a window bound that is no finite time is refused, naming the option.
+for bound in "--from nan" "--to nan" "--to inf" "--from -inf"; do
+  expect 2 "analyze $bound is a usage error" -- "$tcpmsim" analyze "$work/steps.h5" \
+    --response muscle/force --reference drive/power $bound -o "$work/none_analysis.h5"
+  contains "$work/err" "${bound% *}: expected a time in s, a finite number, got '${bound#* }'" "the error names ${bound% *}"
+done
+[[ ! -e $work/none_analysis.h5 ]] && echo "ok: no analysis of a window that is none" || { echo "FAIL: an analysis file for a NaN window"; failures=$((failures + 1)); }
+
+# Issue 31: recover refuses an HDF5 file that tcpmsim did not write, and writes nothing.
+if /usr/bin/python3 -c "import h5py" 2>/dev/null; then
+  /usr/bin/python3 -c 'import sys, h5py, numpy
+with h5py.File(sys.argv[1], "w") as f:
+    f.create_dataset("time", data=numpy.arange(5.0), maxshape=(None,), chunks=True)' "$work/foreign.h5.partial"
+  expect 3 "recover of a foreign HDF5 file is a data-file error" -- "$tcpmsim" recover "$work/foreign.h5.partial"
+  contains "$work/err" "$work/foreign.h5.partial: error: not a tcpmsim record: it has no 'tcpmsim_version' attribute" "the foreign file is named and why"
+  [[ -e $work/foreign.h5.partial && ! -e $work/foreign.interrupted.h5 && ! -e $work/foreign.interrupted.h5.recovering ]] \
+    && echo "ok: nothing recovered from a foreign file" || { echo "FAIL: recover wrote a record from a foreign file"; ls "$work"; failures=$((failures + 1)); }
+  expect 3 "analyze of a foreign HDF5 file is a data-file error" -- "$tcpmsim" analyze "$work/foreign.h5.partial" \
+    --response muscle/force -o "$work/none_analysis.h5"
+  contains "$work/err" "$work/foreign.h5.partial: error: not a tcpmsim record: it has no 'tcpmsim_version' attribute" "analyze names the foreign file and why"
+  rm -f "$work/foreign.h5.partial"
+fi
 
 # Provenance (issue 14): every file the commands above wrote carries the version, git commit,
 # command line and configs, and units on every numeric dataset.

@@ -179,6 +179,22 @@ class PythonAnalysisIsTheCommandLines(unittest.TestCase):
 
 
 class PythonErrorsAreCommandLineErrors(unittest.TestCase):
+    def test_bad_sources_and_arguments_raise_the_modules_errors(self):
+        # Issue 31: a bare RuntimeError, bytes taken for a path, a cryptic ValueError.
+        with self.assertRaises(tcpmsim.UsageError) as raised:
+            tcpmsim.analyze(123, "muscle/force")
+        self.assertIn("expected a Result or a record's path", str(raised.exception))
+        with self.assertRaises(tcpmsim.ConfigError) as raised:
+            tcpmsim.analyze("missing.h5", "muscle/force")
+        self.assertEqual(str(raised.exception), "missing.h5: error: no such file")
+        with open(CONFIGS[0], "rb") as file:
+            text = file.read()
+        self.assertEqual(tcpmsim.Scenario.from_yaml(text).name,
+                         tcpmsim.Scenario.from_yaml(CONFIGS[0]).name)
+        with self.assertRaises(TypeError) as raised:
+            tcpmsim.Scenario.from_yaml(CONFIGS[0], set=["muscle.mechanics.k2=3 mN/mm"])
+        self.assertIn("set: expected a dict of path: value", str(raised.exception))
+
     def test_a_bad_set_raises_the_command_lines_message(self):
         for setting, error in [("muscle.mechanics.k2=3 kg", tcpmsim.ConfigError),
                                ("muscle.mechanics.k2=-1 N/m", tcpmsim.ConfigError),
@@ -205,6 +221,26 @@ class PythonErrorsAreCommandLineErrors(unittest.TestCase):
         self.assertIn(f"{file.name}:9:", str(raised.exception))
         with self.assertRaises(tcpmsim.ConfigError):
             tcpmsim.Scenario.from_yaml("configs/no_such_file.yaml")
+
+    def test_a_run_too_large_for_memory_raises_the_record_size_message(self):
+        # Issue 31: the in-memory run grew until MemoryError; it is refused before it starts,
+        # with the message `tcpmsim run` gives for the same record.
+        scenario = tcpmsim.Scenario.from_yaml(CONFIGS[0])
+        for keyword, setting in [("output_rate", "output.rate=1e9 Hz"),
+                                 ("duration", "scenario.duration=1e9 s")]:
+            with self.subTest(keyword=keyword):
+                expected = command_line_error("run", CONFIGS[0], "--set", setting)
+                with self.assertRaises(tcpmsim.ConfigError) as raised:
+                    scenario.run(**{keyword: 1e9})
+                message = str(raised.exception)
+                # The same error; only the --set's spelling of 1e9 differs in its location.
+                self.assertEqual(message.split(": error: ")[1], expected.split(": error: ")[1])
+                self.assertIn("error: output.rate: the record would hold", message)
+                self.assertIn("over the limit of 2 GB", message)
+        with self.assertRaises(tcpmsim.ConfigError):
+            tcpmsim.run_many([scenario.copy().set("output.rate", "1e9 Hz")])
+        small = scenario.run(duration=10, max_output_size=1e9)
+        self.assertEqual(small["time"][-1], 10.0)
 
     def test_a_solver_failure_raises_with_the_samples_before_it(self):
         scenario = tcpmsim.Scenario.from_yaml(CONFIGS[0]).set("solver.max_steps", 200)
