@@ -674,6 +674,10 @@ int main(int argc, char** argv) {
   discover_command->add_option("--effects", request.effects, "Candidates (default: all eight)")
       ->delimiter(',');
   discover_command
+      ->add_option("--max-order", request.max_order,
+                   "Highest model order tried within a family (elements, branches; 0: all)")
+      ->check(CLI::Range(0, 100));
+  discover_command
       ->add_option("--noise", request.noise,
                    "Noise floor of an output, e.g. force=2 mN (default: estimated from the data)")
       ->delimiter(',');

@@ -347,8 +347,11 @@ Discovery discover(const DiscoverSetup& setup) {
       effect_candidates(*spec.problem.model, fitted, *spec.problem.data, model_outputs);
   const auto& wanted = setup.request.effects;
   std::vector<EffectCandidate> tried;
+  const int max_order = setup.request.max_order;
   for (auto& candidate : catalogue.candidates) {
-    if (wanted.empty() || std::find(wanted.begin(), wanted.end(), candidate.name) != wanted.end())
+    if ((wanted.empty() ||
+         std::find(wanted.begin(), wanted.end(), candidate.name) != wanted.end()) &&
+        (max_order <= 0 || candidate.order <= max_order))
       tried.push_back(std::move(candidate));
   }
   for (auto& skipped : catalogue.skipped) {

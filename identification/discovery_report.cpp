@@ -164,6 +164,7 @@ std::string discovery_json(const Discovery& discovery) {
                       {"min_signature", request.min_signature},
                       {"floor_margin", request.floor_margin},
                       {"min_gap_closed", request.min_gap_closed},
+                      {"max_order", request.max_order},
                       {"starts", request.starts},
                       {"seed", request.seed}};
   json["simulations"] = discovery.simulations;

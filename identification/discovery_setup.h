@@ -16,6 +16,7 @@ struct DiscoverRequest {
   std::vector<std::string> outputs;     // compared channels: "force", or "force=load.force"
   std::vector<std::string> parameters;  // the base model's fitted parameters; empty: default
   std::vector<std::string> effects;     // candidates tried; empty: the whole catalogue
+  int max_order = 0;  // the highest model order tried within a family (elements, branches); 0: all
   std::vector<std::string> overrides;   // --set on the model
   double validate_from = 0.0;           // [s]: identification before, validation from here
   int threads = 2;                      // candidates fitted at once
