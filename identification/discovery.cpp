@@ -205,8 +205,15 @@ std::vector<CandidateOutcome> fit_candidates(const DiscoverSetup& setup, const B
                                              int& simulations) {
   std::vector<CandidateOutcome> outcomes(tried.size());
   const std::vector<std::string> labels(tried.size(), "candidate");
-  run_in_parallel(labels, setup.request.threads, [&](std::size_t c) {
-    outcomes[c] = fit_candidate(setup, baseline.result, noise, tried[c]);
+  // The candidates with the most parameters (the slowest fits) are started first, so that the
+  // threads finish together; each result keeps its place.
+  std::vector<std::size_t> order(tried.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return tried[a].parameters.size() > tried[b].parameters.size();
+  });
+  run_in_parallel(labels, setup.request.threads, [&](std::size_t k) {
+    outcomes[order[k]] = fit_candidate(setup, baseline.result, noise, tried[order[k]]);
   });
   for (auto& outcome : outcomes) {
     simulations += outcome.result.simulations;

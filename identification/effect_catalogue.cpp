@@ -281,8 +281,8 @@ Candidates effect_candidates(const Scenario& scenario, const Context& fitted,
         .free("threshold", base.ambient + 10.0, base.ambient, base.ambient + 100.0, "K");
     add(ratchet);
     if (base.power_peak > 0.0) {
-      CandidateBuilder fan(base, "heating_dependent_convection", "Q = G_P (P / P_peak) (T - T_amb)",
-                           1,
+      CandidateBuilder fan(base, "heating_dependent_convection",
+                           "Q = G_P (P_b / P_peak) (T - T_amb), P_b lagging P", 1,
                            "the heat-transfer coefficient rises while the heating runs (a fan "
                            "or heat gun)",
                            "residual against power times the temperature rise");
