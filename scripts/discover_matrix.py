@@ -15,7 +15,6 @@ and the median validation gap shrink.
   scripts/discover_matrix.py --noise 2 --seeds 1 --out results/discover_matrix_ci   # reduced
   scripts/discover_matrix.py --resume ...   # go on with an interrupted matrix
 """
-import argparse
 import json
 import os
 import random
@@ -23,7 +22,7 @@ import statistics
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from matrix_runs import finish, run, run_cases  # noqa: E402
+from matrix_runs import finish, parser_for, run, run_cases  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BASE = os.path.join(ROOT, "configs/discover/ch7_base.yaml")
@@ -98,6 +97,22 @@ def effect_forms(name, rng):
         forms = [
             ("a second SLS branch, tau 8 s", effects(
                 f"{{type: maxwell_branch, stiffness: {1.5 * size} N/m, time_constant: 8 s}}")),
+        ]
+    elif name == "ratchet":
+        forms = [
+            ("ratchet above 33 degC", effects(
+                f"{{type: ratchet, rate: {1e-5 * size} N/(K*s), threshold: 33 degC}}")),
+            ("ratchet above 38 degC", effects(
+                f"{{type: ratchet, rate: {2e-5 * size} N/(K*s), threshold: 38 degC}}")),
+        ]
+    elif name == "heating_dependent_convection":
+        forms = [
+            ("boost at once", effects(
+                f"{{type: heating_convection, conductance: {0.04 * size} W/K, "
+                "reference_power: 3.12 W}")),
+            ("boost through a 10 s spin-up", effects(
+                f"{{type: heating_convection, conductance: {0.05 * size} W/K, "
+                "reference_power: 3.12 W, time_constant: 10 s}")),
         ]
     else:
         forms = [("none", [])]
@@ -205,25 +220,13 @@ def table(results):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--build", default=os.path.join(ROOT, "build"))
-    parser.add_argument("--out", default=os.path.join(ROOT, "results/discover_matrix"))
-    parser.add_argument("--noise", default="1,2,4", help="load-cell noise levels [mN]")
-    parser.add_argument("--seeds", type=int, default=5)
-    parser.add_argument("--effects", default="none,slow_relaxation,hysteresis,nonlinear_convection,"
-                        "thermal_lag,nonlinear_stiffness,temperature_dependent_stiffness,"
-                        "inductance_temperature,viscoelastic_relaxation")
-    parser.add_argument("--cases-at-once", type=int, default=1, help="discover runs in parallel")
-    parser.add_argument("--threads", type=int, default=2, help="threads of each discover run")
-    parser.add_argument("--plots", action="store_true", help="draw each case's pictures")
+    parser = parser_for(__doc__, ROOT, "results/discover_matrix",
+                        "none,slow_relaxation,hysteresis,nonlinear_convection,thermal_lag,"
+                        "nonlinear_stiffness,temperature_dependent_stiffness,"
+                        "inductance_temperature,viscoelastic_relaxation,ratchet,"
+                        "heating_dependent_convection", "hidden effects")
     parser.add_argument("--check", action="store_true",
                         help="exit 1 unless every case's verdict is its hidden effect (none: none)")
-    parser.add_argument("--resume", action="store_true",
-                        help="reuse the cases of --out already finished with the same definition "
-                        "(a long matrix can run in pieces)")
-    parser.add_argument("--no-inductance", dest="inductance", action="store_false",
-                        help="compare the force only (no L* output, no inductance candidate)")
     arguments = parser.parse_args()
     os.makedirs(arguments.out, exist_ok=True)
     inputs = os.path.join(arguments.out, "protocol.h5")

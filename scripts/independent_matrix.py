@@ -23,7 +23,6 @@ otherwise.
   scripts/independent_matrix.py --effects hysteresis:prandtl_ishlinskii ...          # one form
   scripts/independent_matrix.py --resume ...   # go on with an interrupted matrix
 """
-import argparse
 import json
 import os
 import statistics
@@ -32,7 +31,7 @@ import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import independent_effects as ie  # noqa: E402
-from matrix_runs import finish, run, run_cases  # noqa: E402
+from matrix_runs import finish, parser_for, run, run_cases  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BASE = os.path.join(ROOT, "configs/discover/ch7_base.yaml")
@@ -224,18 +223,9 @@ def table(results):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--build", default=os.path.join(ROOT, "build"))
-    parser.add_argument("--out", default=os.path.join(ROOT, "results/independent_matrix"))
-    parser.add_argument("--noise", default="1,2,4", help="load-cell noise levels [mN]")
-    parser.add_argument("--seeds", type=int, default=5)
-    parser.add_argument("--effects", default=DEFAULT_EFFECTS,
-                        help="hidden effects, each NAME or NAME:FORM (scripts/independent_effects.py "
+    parser = parser_for(__doc__, ROOT, "results/independent_matrix", DEFAULT_EFFECTS,
+                        "hidden effects, each NAME or NAME:FORM (scripts/independent_effects.py "
                         "--list); default: all, ratchet and heating_dependent_convection included")
-    parser.add_argument("--cases-at-once", type=int, default=1, help="discover runs in parallel")
-    parser.add_argument("--threads", type=int, default=2, help="threads of each discover run")
-    parser.add_argument("--plots", action="store_true", help="draw each case's pictures")
     parser.add_argument("--controls", action="store_true",
                         help="draw the forms that are tcpmsim's own laws too")
     parser.add_argument("--protocol", choices=("brief", "thesis"), default="brief",
@@ -244,10 +234,6 @@ def main():
     parser.add_argument("--check", action="store_true",
                         help="exit 1 unless every verdict is the right one (the hidden effect; "
                         "unexplained for one without a candidate; none for none)")
-    parser.add_argument("--resume", action="store_true",
-                        help="reuse the cases of --out already finished with the same definition")
-    parser.add_argument("--no-inductance", dest="inductance", action="store_false",
-                        help="compare the force only (no L* output, no inductance candidate)")
     arguments = parser.parse_args()
     tool = os.path.join(arguments.build, "tcpmsim")
     if not os.access(tool, os.X_OK):

@@ -1,6 +1,7 @@
 """What the two hidden-effect matrices of `tcpmsim discover` share (scripts/discover_matrix.py,
 scripts/independent_matrix.py): a command run into a case's log, the cases run a few at a time
 with a line printed as each ends, and the results written and checked."""
+import argparse
 import concurrent.futures
 import json
 import os
@@ -40,3 +41,23 @@ def finish(name, out, results, text, expected, check):
     wrong = [r["case"] for r in results if r["verdict"] != expected(r)]
     if check and wrong:
         sys.exit(f"{name}: wrong verdicts: " + ", ".join(wrong))
+
+
+def parser_for(doc, root, out, effects, effects_help):
+    """The command line both matrices take; each adds its own options."""
+    parser = argparse.ArgumentParser(description=doc,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--build", default=os.path.join(root, "build"))
+    parser.add_argument("--out", default=os.path.join(root, out))
+    parser.add_argument("--noise", default="1,2,4", help="load-cell noise levels [mN]")
+    parser.add_argument("--seeds", type=int, default=5)
+    parser.add_argument("--effects", default=effects, help=effects_help)
+    parser.add_argument("--cases-at-once", type=int, default=1, help="discover runs in parallel")
+    parser.add_argument("--threads", type=int, default=2, help="threads of each discover run")
+    parser.add_argument("--plots", action="store_true", help="draw each case's pictures")
+    parser.add_argument("--resume", action="store_true",
+                        help="reuse the cases of --out already finished with the same definition "
+                        "(a long matrix can run in pieces)")
+    parser.add_argument("--no-inductance", dest="inductance", action="store_false",
+                        help="compare the force only (no L* output, no inductance candidate)")
+    return parser
