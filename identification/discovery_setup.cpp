@@ -273,16 +273,14 @@ std::vector<std::pair<std::size_t, double>> spikes_in(const std::vector<double>&
 MeasuredData without_spikes(const MeasuredData& data, const std::vector<std::string>& channels,
                             const std::vector<std::string>& inputs,
                             std::vector<std::size_t>& replaced) {
-  // An input's own one-sample excursion drives a true one in the outputs: those stay. A replayed
-  // input is often noise-free (piecewise constant, or on a grid), so its noise scale is 0 and
-  // every smooth peak of a multisine would count: an excursion must also span 2 % of the
-  // input's range.
+  // An input's own one-sample excursion drives a true one in the outputs: those stay. It must
+  // also pass the input's jump threshold: a noise-free input's noise scale is 0, and every
+  // smooth peak of a multisine would count.
   std::vector<char> driven(data.time().size(), 0);
   for (const auto& input : inputs) {
     if (const MeasuredChannel* channel = data.find(input)) {
-      const auto [low, high] = std::minmax_element(channel->values.begin(), channel->values.end());
-      const double least = channel->values.empty() ? 0.0 : 0.02 * (*high - *low);
-      for (const auto& [i, level] : spikes_in(channel->values, least)) {
+      for (const auto& [i, level] :
+           spikes_in(channel->values, input_jump_threshold(channel->values))) {
         (void)level;
         for (std::size_t j = i - 1; j <= i + 1; ++j) driven[j] = 1;
       }

@@ -16,13 +16,18 @@ double third_difference(const std::vector<double>& values, std::size_t i) {
 
 }  // namespace
 
+double input_jump_threshold(const std::vector<double>& input) {
+  if (input.empty()) return 0.0;
+  const auto [low, high] = std::minmax_element(input.begin(), input.end());
+  return 0.02 * (*high - *low);
+}
+
 std::vector<char> steps_in_inputs(const std::vector<const std::vector<double>*>& inputs,
                                   std::size_t samples) {
   std::vector<char> steps(samples, 0);
   for (const auto* input : inputs) {
     if (input->size() != samples || samples < 4) continue;
-    const auto [low, high] = std::minmax_element(input->begin(), input->end());
-    const double least = 0.02 * (*high - *low);
+    const double least = input_jump_threshold(*input);
     for (std::size_t i = 0; i + 3 < samples; ++i) {
       if (std::abs(third_difference(*input, i)) > least) {
         for (std::size_t j = i; j <= i + 3; ++j) steps[j] = 1;

@@ -18,8 +18,13 @@ namespace tcpmsim::fit {
 double difference_noise_floor(const std::vector<double>& values,
                               const std::vector<char>& steps = {});
 
-// Per sample, whether a third difference that spans it meets a jump of one of `inputs` larger
-// than 2 % of that input's range: a deflection step moves a muscle's force at once.
+// The least change of a replayed input that counts as its own jump or one-sample excursion: 2 %
+// of its range. A replayed input is often noise-free (held between steps, or on a grid), so a
+// noise scale says nothing about it, and a multisine's smooth peaks stay below this.
+double input_jump_threshold(const std::vector<double>& input);
+
+// Per sample, whether a third difference that spans it meets a jump of one of `inputs` above
+// its input_jump_threshold: a deflection step moves a muscle's force at once.
 std::vector<char> steps_in_inputs(const std::vector<const std::vector<double>*>& inputs,
                                   std::size_t samples);
 
