@@ -154,6 +154,13 @@ int run(const Options& options) {
   tcpmsim::check_record_size(scenario, static_cast<double>(options.max_output_bytes));
   const std::string output =
       options.output.empty() ? "results/" + scenario.settings.name + ".h5" : options.output;
+  // Nobody sets an external input in a run of its own: say what it holds.
+  for (const auto& input : scenario.system->external_inputs()) {
+    if (options.quiet) break;
+    std::cerr << "tcpmsim: note: " << input.name
+              << " is an external input (a master sets it step by step: tcpmsim.Simulator, an "
+                 "FMU); this run holds its initial value\n";
+  }
   tcpmsim::RunOutcome outcome;
   {
     const tcpmsim::InterruptGuard interrupts;

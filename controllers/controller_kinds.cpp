@@ -1,6 +1,7 @@
 #include "controllers/controller_kinds.h"
 
 #include "controllers/controller_facts.h"
+#include "controllers/external_controller.h"
 #include "controllers/fan_controller.h"
 #include "controllers/joint_controller_kind.h"
 #include "controllers/joule_drive.h"
@@ -113,6 +114,19 @@ void build_controller(const ConfigNode& node, const std::string& name, ScenarioB
   follow_pwm(build, name, drive);
 }
 
+void build_external_controller(const ConfigNode& node, const std::string& name,
+                               ScenarioBuilder& build) {
+  node.declare({"drive"});
+  const auto& drive = build.linked(node, "drive", kDriveCategory);
+  const auto* facts = build.facts<MuscleDriveFacts>(drive.name);
+  if (!facts)
+    node.fail("an external controller commands a Muscle Drive's power (drive.model: muscle_drive)");
+  check_takes_command(*facts);
+  SystemBuilder& system = build.system();
+  system.add(ExternalController::from_config(name, node));
+  system.connect(drive.name + ".power_command", name + ".power_command");
+}
+
 std::string with_drive(const std::string& drive, const std::string& more = "") {
   return example_muscle_scenario("",
                                  drive + more + "load: {type: deflection, deflection: 20 mm}\n");
@@ -151,6 +165,15 @@ controller:
   initial_power: 1 W
 load: {type: deflection, deflection: 20 mm}
 )";
+
+// The self-sensing scenario with the loop closed outside (sim/stepper.h, tcpmsim.Simulator).
+std::string external_controller_scenario() {
+  std::string text = kSelfSensingScenario;
+  text = text.substr(0, text.find("controller:\n"));
+  return text +
+         "controller: {type: external, drive: drive, power_limits: [0.10 W, 3.12 W], "
+         "initial_power: 1 W}\nload: {type: deflection, deflection: 20 mm}\n";
+}
 
 }  // namespace
 
@@ -212,6 +235,13 @@ void register_controller_kinds(KindRegistry& kinds) {
              "saturation (7.7)-(7.9), sampled with the drive's PWM",
              {{kSelfSensingScenario, "controller"}},
              InstanceBuilder(build_controller)});
+  kinds.add({kControllerCategory,
+             "external",
+             "the loop closed outside the system: a Python controller (tcpmsim.Simulator), an "
+             "FMU's master or a C++ loop sets the drive's power each step, within power_limits, "
+             "where the PID would act",
+             {{external_controller_scenario(), "controller"}},
+             InstanceBuilder(build_external_controller)});
   register_joint_angle_controller(kinds);
   register_fan_controller(kinds);
 }

@@ -65,5 +65,6 @@ void bind_errors(pybind11::module_& module);
 void bind_scenario(pybind11::module_& module);
 void bind_result(pybind11::module_& module);
 void bind_analysis(pybind11::module_& module);
+void bind_simulator(pybind11::module_& module);
 
 }  // namespace tcpmsim::python

@@ -32,4 +32,5 @@ PYBIND11_MODULE(_core, module) {
   tcpmsim::python::bind_scenario(module);
   tcpmsim::python::bind_result(module);
   tcpmsim::python::bind_analysis(module);
+  tcpmsim::python::bind_simulator(module);
 }

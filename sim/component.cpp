@@ -1,6 +1,7 @@
 #include "sim/component.h"
 
 #include <numeric>
+#include <stdexcept>
 
 #include "sim/context.h"
 
@@ -11,6 +12,14 @@ Component::Component(std::string group, std::string kind)
 
 std::string Component::check_connections() const {
   return {};
+}
+
+std::pair<double, double> Component::external_input_range(const Evaluation&, int) const {
+  throw std::logic_error(group_ + " has no external input");
+}
+
+void Component::hold_external_input(const Evaluation&, int, double) const {
+  throw std::logic_error(group_ + " has no external input");
 }
 
 std::unique_ptr<RunState> Component::create_run_state(const RunSetup&) const {

@@ -65,6 +65,13 @@ struct SignalDeclaration {
   const Signal* signal;
 };
 
+// An input set from outside the system while a run goes on (sim/stepper.h: a controller in
+// Python, an FMU's master): recorded as the component's output of the same name.
+struct ExternalInputDeclaration {
+  std::string name;  // "<group>.<name>" to the master
+  std::string unit;
+};
+
 // Whatever a component keeps per run, outside the continuous state: its parameters as a run
 // context sets them, what it derives from them, and its discrete state (held outputs, filter
 // buffers, random streams). Created by the component when a run starts.
@@ -125,6 +132,13 @@ class Component {
   // Numeric parameters a run context may change, with their values as built.
   virtual std::vector<ParameterDeclaration> parameters() const { return {}; }
   virtual std::vector<SignalDeclaration> signals() const { return {}; }
+  // Inputs a master outside the system sets as the run goes (none by default). The master
+  // holds a value within external_input_range from the instant it sets it on; it sets it
+  // between System::begin_instant and end_instant, where the controllers act.
+  virtual std::vector<ExternalInputDeclaration> external_inputs() const { return {}; }
+  virtual std::pair<double, double> external_input_range(const Evaluation& evaluation,
+                                                         int index) const;
+  virtual void hold_external_input(const Evaluation& evaluation, int index, double value) const;
 
   // Called once its inputs are wired: a component whose inputs are optional says here whether
   // what is connected makes sense (the problem, or "").

@@ -101,7 +101,7 @@ struct detail::CvodeHandles {
   }
 };
 
-namespace {
+namespace detail {
 
 // Output times t0 + k * interval, then t_end if that is off the grid.
 class OutputGrid {
@@ -124,6 +124,21 @@ class OutputGrid {
   double t0_, t_end_, interval_;
   long count_ = 0, index_ = 0;
 };
+
+// Where a run stands between calls of Integrator::advance.
+struct Course {
+  double t0, t_end, t;
+  OutputGrid grid;
+  OutputSink* sink;
+  bool hold_instants;         // each advance leaves its end instant half taken
+  bool instant_held = false;  // the instant at t waits for its controllers and actuators
+  long steps_taken = 0;
+  bool ended = false;  // the statistics of the whole run are counted
+};
+
+}  // namespace detail
+
+namespace {
 
 constexpr int kUnrecoverable = -1;
 constexpr int kRecoverable = 1;
@@ -736,18 +751,67 @@ void Integrator::report_progress(const Progress& progress, double reached, long 
 
 SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output, OutputSink& sink,
                                  const Progress& progress) {
+  begin(t0, t_end, output, sink, InstantSplit::whole);
+  advance(t_end, progress);
+  return statistics_;
+}
+
+void Integrator::begin(double t0, double t_end, OutputTimes output, OutputSink& sink,
+                       InstantSplit split) {
   auto& cv = *cvode_;
   double* state = N_VGetArrayPointer(cv.state);
   system_.initialize(context_, t0, state);
-  system_.at_breakpoint(context_, t0, t0, state);  // sampled components take their first sample
+  course_ = std::make_unique<detail::Course>(detail::Course{
+      t0, t_end, t0, detail::OutputGrid(std::max(t0, output.start), t_end, output.interval), &sink,
+      split == InstantSplit::held});
+  // Sampled components take their first sample.
+  if (course_->hold_instants)
+    system_.begin_instant(context_, t0, t0, state);
+  else
+    system_.at_breakpoint(context_, t0, t0, state);
+  course_->instant_held = course_->hold_instants;
   if (cv.sensitivities) cv.sensitivities->initialize(t0, cv.sensitivity_pointers);
   statistics_ = {};
-  OutputGrid grid(std::max(t0, output.start), t_end, output.interval);
-  long steps_taken = 0;
-  int collapsed_steps = 0;
+}
 
-  double t = t0;
-  while (t < t_end) {
+double Integrator::time() const {
+  return course_ ? course_->t : 0.0;
+}
+
+SolverStatistics Integrator::statistics() {
+  if (!course_ || course_->ended) return statistics_;
+  // CVODE's counters since the last restart, added to a copy: the restart or the end adds them
+  // to the run's own count.
+  auto& cv = *cvode_;
+  const SolverStatistics before = statistics_;
+  const long carried = cv.carried_jacobians;
+  const long preconditioner = cv.preconditioner_jacobians;
+  const long jacobian_rhs = cv.jacobian_rhs_evaluations;
+  accumulate_statistics();
+  const SolverStatistics so_far = statistics_;
+  statistics_ = before;
+  cv.carried_jacobians = carried;
+  cv.preconditioner_jacobians = preconditioner;
+  cv.jacobian_rhs_evaluations = jacobian_rhs;
+  return so_far;
+}
+
+void Integrator::advance(double until, const Progress& progress) {
+  if (!course_) throw std::logic_error("Integrator::advance before begin");
+  auto& cv = *cvode_;
+  detail::Course& course = *course_;
+  double* state = N_VGetArrayPointer(cv.state);
+  const double t0 = course.t0;
+  const double t_end = course.t_end;
+  until = std::min(until, t_end);
+  if (course.instant_held) {  // the instant the last call stopped at, taken to its end
+    system_.end_instant(context_, course.t, course.t == t0 ? t0 : course.t - time_margin(course.t),
+                        state);
+    course.instant_held = false;
+  }
+  detail::OutputGrid& grid = course.grid;
+  double t = course.t;
+  while (t < until) {
     // Breakpoints closer than a few rounding errors are one event; a signal composed from
     // shifted pieces may report an instant that is t itself after rounding.
     const double margin = time_margin(t);
@@ -755,7 +819,11 @@ SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output, Ou
     while (stop <= t + 2.0 * margin)
       stop = system_.next_breakpoint_after(context_, std::max(stop, t + 2.0 * margin));
     if (cv.sensitivities) cv.sensitivities->check_breakpoint(t, stop);
-    stop = std::min(stop, t_end);
+    stop = std::min(stop, until);
+    // Stepping, a time asked for within rounding of a breakpoint is that breakpoint (a master
+    // that adds its step to the time it reached lands an ulp beside the sample instants).
+    if (course.hold_instants && until > stop && until - stop <= 2.0 * time_margin(until))
+      stop = until;
     const bool last_segment = stop >= t_end;
     start_segment(t, t == t0);
     if (cv.sensitivities) start_sensitivities(t == t0);
@@ -763,8 +831,8 @@ SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output, Ou
     cv.segment_start = t + margin;
     cv.segment_end = stop - time_margin(stop);
     ++statistics_.segments;
-    collapsed_steps = 0;  // a restart's first steps are small by design
-    const long segment_first_step = steps_taken + 1;
+    int collapsed_steps = 0;  // a restart's first steps are small by design
+    const long segment_first_step = course.steps_taken + 1;
     double reached = t;
     while (reached < stop) {
       cv.rhs_problem.clear();
@@ -777,7 +845,7 @@ SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output, Ou
         system_.at_events(context_, reached, cv.signal_time(reached), state, cv.event_flags.data());
         refresh_tolerances();
       }
-      cv.steps = ++steps_taken;
+      const long steps_taken = cv.steps = ++course.steps_taken;
       if (steps_taken == segment_first_step) {
         cv.restart_step = first_step_after_restart(cv.memory);
         cv.offer_carried_jacobian = false;
@@ -803,7 +871,7 @@ SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output, Ou
         check(CVodeGetDky(cv.memory, when, 0, cv.scratch), "CVodeGetDky");
         system_.evaluate_outputs(context_, when, cv.signal_time(when),
                                  N_VGetArrayPointer(cv.scratch));
-        sink.record(when, context_.signals());
+        course.sink->record(when, context_.signals());
         if (cv.sensitivities) record_sensitivities(when, N_VGetArrayPointer(cv.scratch));
         // A long step may cover many output times: observers hear of them too.
         if (++statistics_.output_samples % kOutputsPerProgress == 0 && progress)
@@ -811,17 +879,24 @@ SolverStatistics Integrator::run(double t0, double t_end, OutputTimes output, Ou
       }
       if (progress) report_progress(progress, reached, steps_taken);
     }
-    t = stop;
+    t = course.t = stop;
     if (t < t_end) {
-      system_.at_breakpoint(context_, t, t - time_margin(t), state);
+      if (t >= until && course.hold_instants) {
+        system_.begin_instant(context_, t, t - time_margin(t), state);
+        course.instant_held = true;
+      } else {
+        system_.at_breakpoint(context_, t, t - time_margin(t), state);
+      }
       if (cv.sensitivities) {
         check(CVodeGetSens(cv.memory, &reached, cv.sensitivity_state), "CVodeGetSens");
         cv.sensitivities->at_breakpoint(t, t - time_margin(t), state, cv.sensitivity_pointers);
       }
     }
   }
-  accumulate_statistics();
-  return statistics_;
+  if (t >= t_end && !course.ended) {
+    course.ended = true;
+    accumulate_statistics();
+  }
 }
 
 }  // namespace tcpmsim

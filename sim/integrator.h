@@ -15,7 +15,8 @@ namespace tcpmsim {
 
 namespace detail {
 struct CvodeHandles;
-}
+struct Course;
+}  // namespace detail
 
 // The Newton iteration's linear solver: direct (dense, band, KLU on the sparse pattern), or
 // GMRES preconditioned by the Jacobian within members (KLU on each member's block), whose cost
@@ -148,6 +149,23 @@ class Integrator {
   SolverStatistics run(double t0, double t_end, OutputTimes output,
                        ForwardSensitivities& sensitivities, SensitivitySink& sink);
 
+  // Step by step (sim/stepper.h): begin() starts a run at t0 and advance() integrates it on to
+  // a time, any number of times, until t_end; run() is begin() and advance(t_end) in one.
+  // With InstantSplit::held every call leaves the instant it stops at (t0 for begin) half taken:
+  // its instruments and estimators have acted (System::begin_instant), its controllers and
+  // actuators act when the next advance() starts (System::end_instant). Something outside the
+  // system (a controller in Python, an FMU's master) reads the estimates and sets its commands
+  // in between, exactly where a controller component of the system would act.
+  enum class InstantSplit { whole, held };
+  void begin(double t0, double t_end, OutputTimes output, OutputSink& sink,
+             InstantSplit split = InstantSplit::whole);
+  // Integrates to min(until, t_end); the run's outputs at the output times it passes go to the
+  // sink. Throws what run() throws.
+  void advance(double until, const Progress& progress = {});
+  double time() const;  // the time reached
+  // CVODE's counters of the run so far.
+  SolverStatistics statistics();
+
  private:
   void attach_linear_solver();
   void attach_krylov_solver();
@@ -161,6 +179,7 @@ class Integrator {
   void report_progress(const Progress& progress, double reached, long steps);
 
   std::unique_ptr<detail::CvodeHandles> cvode_;
+  std::unique_ptr<detail::Course> course_;
   const System& system_;
   Context& context_;
   SolverSettings settings_;

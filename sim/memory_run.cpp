@@ -14,26 +14,20 @@
 namespace tcpmsim {
 namespace {
 
-// Keeps each series' columns of every output sample, in the record's layout.
-class SeriesSink final : public OutputSink {
- public:
-  explicit SeriesSink(MemoryRun& run) : run_(run) {}
-  void record(double time, std::span<const double> signals) override {
-    run_.time.push_back(time);
-    for (std::size_t series = 0; series < run_.series.size(); ++series)
-      for (const int index : run_.series[series].signal_indices)
-        run_.values[series].push_back(signals[static_cast<std::size_t>(index)]);
-  }
-
- private:
-  MemoryRun& run_;
-};
-
 double seconds_since(std::chrono::steady_clock::time_point started) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 }
 
 }  // namespace
+
+MemoryRunSink::MemoryRunSink(MemoryRun& run) : run_(run) {}
+
+void MemoryRunSink::record(double time, std::span<const double> signals) {
+  run_.time.push_back(time);
+  for (std::size_t series = 0; series < run_.series.size(); ++series)
+    for (const int index : run_.series[series].signal_indices)
+      run_.values[series].push_back(signals[static_cast<std::size_t>(index)]);
+}
 
 const RecordSeries* MemoryRun::find(const std::string& channel, std::size_t* index) const {
   for (std::size_t position = 0; position < series.size(); ++position) {
@@ -51,7 +45,7 @@ MemoryRun run_in_memory(const Scenario& scenario, const Integrator::Progress& pr
   MemoryRun run;
   run.series = record_layout(*scenario.system);
   run.values.resize(run.series.size());
-  SeriesSink sink(run);
+  MemoryRunSink sink(run);
   Context context = scenario.make_context();
   scenario.system->prepare(context);  // as run_scenario does before its record is planned
   try {
@@ -70,6 +64,12 @@ MemoryRun run_in_memory(const Scenario& scenario, const Integrator::Progress& pr
 
 std::string save_record(const Scenario& scenario, const MemoryRun& run, const std::string& path) {
   Context context = scenario.make_context();
+  return save_record(scenario, context, run, path);
+}
+
+std::string save_record(const Scenario& scenario, const Context& run_context, const MemoryRun& run,
+                        const std::string& path) {
+  Context context = run_context;      // its parameters, its run state afresh
   scenario.system->prepare(context);  // the inputs as the run had them
   return writing_record(path, [&] {
     Hdf5Recorder recorder(path, *scenario.system, context, record_metadata(scenario));

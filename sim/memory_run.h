@@ -28,6 +28,16 @@ struct MemoryRun {
   const RecordSeries* find(const std::string& channel, std::size_t* index = nullptr) const;
 };
 
+// Appends every output sample to a MemoryRun laid out by record_layout.
+class MemoryRunSink final : public OutputSink {
+ public:
+  explicit MemoryRunSink(MemoryRun& run);
+  void record(double time, std::span<const double> signals) override;
+
+ private:
+  MemoryRun& run_;
+};
+
 // Integrates `scenario` in a fresh context, keeping every recorded output. A solver failure or a
 // StopRequest from `progress` ends the run with that status rather than throwing; the samples
 // before it are kept. Before anything is allocated, throws the ConfigError of
@@ -40,5 +50,8 @@ MemoryRun run_in_memory(const Scenario& scenario, const Integrator::Progress& pr
 // inputs, attributes and ending, so that the file is the one a command-line run would leave
 // (a failed or interrupted run as <stem>.failed.h5 or .interrupted.h5). Returns the path written.
 std::string save_record(const Scenario& scenario, const MemoryRun& run, const std::string& path);
+// The same for a run in `context` (its parameters, as a run set them, describe its inputs).
+std::string save_record(const Scenario& scenario, const Context& context, const MemoryRun& run,
+                        const std::string& path);
 
 }  // namespace tcpmsim

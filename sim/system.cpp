@@ -9,6 +9,7 @@
 
 #include "sim/context.h"
 #include "sim/signal.h"
+#include "sim/value_check.h"
 
 namespace tcpmsim {
 
@@ -117,6 +118,11 @@ void System::assign_slices() {
     component.parameter_offset_ = static_cast<int>(parameters_.size());
     for (auto& declared : component.parameters()) parameters_.push_back({std::move(declared), {}});
     parameter_counts_.push_back(static_cast<int>(parameters_.size()) - component.parameter_offset_);
+    const auto external = component.external_inputs();
+    for (std::size_t e = 0; e < external.size(); ++e) {
+      external_inputs_.push_back({qualified(component, external[e].name), external[e].unit,
+                                  &component, static_cast<int>(e)});
+    }
     component.signal_offset_ = static_cast<int>(signal_slots_.size());
     for (const auto& declared : component.signals()) {
       SignalSlot slot{component.group(),
@@ -415,6 +421,18 @@ double System::next_breakpoint_after(Context& context, double time) const {
 
 void System::at_breakpoint(Context& context, double time, double left_limit,
                            const double* state) const {
+  begin_instant(context, time, left_limit, state);
+  end_instant(context, time, left_limit, state);
+}
+
+namespace {
+bool acts_before_controllers(const Component& component) {
+  return component.sampling_stage() < Component::SamplingStage::controller;
+}
+}  // namespace
+
+void System::begin_instant(Context& context, double time, double left_limit,
+                           const double* state) const {
   evaluate_outputs(context, time, left_limit, state);
   const Evaluation now = evaluation(context, time, left_limit, state);
   // Instruments first (a drive that measures as well as heats publishes its reading), then each
@@ -426,11 +444,39 @@ void System::at_breakpoint(Context& context, double time, double left_limit,
     component->compute_observations(now);
   }
   for (const Component* component : sampling_order_) {
+    if (!acts_before_controllers(*component)) break;  // sorted by stage
+    component->at_breakpoint(now);
+    component->compute_outputs(now);
+    component->compute_observations(now);
+  }
+}
+
+void System::end_instant(Context& context, double time, double left_limit,
+                         const double* state) const {
+  const Evaluation now = evaluation(context, time, left_limit, state);
+  for (const Component* component : sampling_order_) {
+    if (acts_before_controllers(*component)) continue;
     component->at_breakpoint(now);
     component->compute_outputs(now);
     component->compute_observations(now);
   }
   evaluate_outputs(context, time, left_limit, state);
+}
+
+std::pair<double, double> System::external_input_range(Context& context, int input) const {
+  const ExternalInputInfo& info = external_inputs_.at(static_cast<std::size_t>(input));
+  return info.owner->external_input_range(evaluation(context, 0.0, 0.0, nullptr), info.index);
+}
+
+void System::hold_external_input(Context& context, int input, double value) const {
+  const ExternalInputInfo& info = external_inputs_.at(static_cast<std::size_t>(input));
+  const auto [lower, upper] = external_input_range(context, input);
+  if (!(value >= lower && value <= upper)) {
+    throw std::invalid_argument(info.name + ": " + number_text(value) + " " + info.unit +
+                                " is outside its range [" + number_text(lower) + ", " +
+                                number_text(upper) + "] " + info.unit);
+  }
+  info.owner->hold_external_input(evaluation(context, 0.0, 0.0, nullptr), info.index, value);
 }
 
 void System::adapt_tolerances(Context& context, double* absolute, double* relative) const {

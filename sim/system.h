@@ -40,6 +40,14 @@ struct ParameterInfo {
   std::string derived_from;  // non-empty: how it is derived
 };
 
+// An input a master outside the system sets while a run goes on (Component::external_inputs).
+struct ExternalInputInfo {
+  std::string name;  // "controller.power_command"
+  std::string unit;
+  const Component* owner;
+  int index;  // in the owner's external_inputs()
+};
+
 // A prescribed signal of the assembled model, with its parameters' place in the parameter list.
 struct SignalSlot {
   std::string group;
@@ -105,6 +113,12 @@ class System {
   const std::vector<ParameterInfo>& parameters() const { return parameters_; }
   const std::vector<SignalSlot>& signal_slots() const { return signal_slots_; }
   const std::vector<MemberSet>& member_sets() const { return member_sets_; }
+  const std::vector<ExternalInputInfo>& external_inputs() const { return external_inputs_; }
+  // The values external input `input` may take in the context's (prepared) run.
+  std::pair<double, double> external_input_range(Context& context, int input) const;
+  // Holds `value` on external input `input` from now on (between begin_instant and end_instant).
+  // Throws std::invalid_argument naming the input and its range for a value outside it.
+  void hold_external_input(Context& context, int input, double value) const;
   int signal_index(std::string_view output) const;                  // "group.name"; -1 if absent
   std::optional<int> parameter_index(std::string_view path) const;  // "muscle.mechanics.k2"
   std::optional<int> signal_slot(std::string_view group, std::string_view name) const;
@@ -140,6 +154,12 @@ class System {
   // at `left_limit` (just before the instant) first, so a controller samples what was true
   // just before it acts.
   void at_breakpoint(Context& context, double time, double left_limit, const double* state) const;
+  // The same in two halves, at_breakpoint being one and then the other: the instruments sense
+  // and the instruments and estimators act; then the controllers and actuators act and the
+  // outputs are recomputed. Between them a controller outside the system (sim/stepper.h) reads
+  // the estimates and sets its commands.
+  void begin_instant(Context& context, double time, double left_limit, const double* state) const;
+  void end_instant(Context& context, double time, double left_limit, const double* state) const;
 
   // Lets components adapt per-state tolerances; both arrays hold the configured ones on entry.
   void adapt_tolerances(Context& context, double* absolute, double* relative) const;
@@ -214,6 +234,7 @@ class System {
   std::vector<Derivation> derivations_;
   std::vector<ParameterConstraint> constraints_;
   std::vector<MemberSet> member_sets_;
+  std::vector<ExternalInputInfo> external_inputs_;
 };
 
 // Builds a System: components are added, wired by name and assembled once.

@@ -10,11 +10,12 @@
 The module is thin: every model, unit and error comes from the C++ engine (tcpmsim._core).
 """
 
-from ._core import (ConfigError, ParameterError, Result, Scenario, SolverFailure, UnitError,
-                    UsageError,
+from ._core import (ConfigError, ParameterError, Result, Scenario, Simulator, SolverFailure,
+                    UnitError, UsageError,
                     __version__, analyze, git_commit, run_many)
 
-__all__ = ["ConfigError", "ParameterError", "Result", "Scenario", "SolverFailure", "UnitError",
+__all__ = ["ConfigError", "ParameterError", "Result", "Scenario", "Simulator", "SolverFailure",
+           "UnitError",
            "UsageError",
            "__version__", "analyze", "git_commit", "run_many", "sweep"]
 
