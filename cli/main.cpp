@@ -20,6 +20,7 @@
 #include "cli/progress.h"
 #include "identification/bench_measurement.h"
 #include "identification/discovery_report.h"
+#include "identification/effect_catalogue.h"
 #include "identification/fit_report.h"
 #include "kinds/standard_kinds.h"
 #include "sim/config/config_error.h"
@@ -54,6 +55,7 @@ struct Options {
   std::vector<std::string> overrides;
   bool quiet = false;
   bool markdown = false;
+  bool discover_families = false;  // kinds: only discover's families
   tcpmsim::analysis::CoilFitOptions coil_fit;
   tcpmsim::SpringForcesOptions spring_forces;
   tcpmsim::ControlTasksOptions control_tasks;
@@ -198,8 +200,13 @@ int run(const Options& options) {
 
 // Every kind the registry holds, with the keys its examples read (sim/kind_listing.h).
 int list_kinds(const Options& options) {
+  if (options.discover_families) {
+    for (const auto& family : tcpmsim::fit::effect_names()) std::cout << family << "\n";
+    return kSuccess;
+  }
   std::cout << tcpmsim::describe_kinds(tcpmsim::standard_kinds(),
-                                       std::make_shared<tcpmsim::UnitSystem>(), options.markdown);
+                                       std::make_shared<tcpmsim::UnitSystem>(), options.markdown,
+                                       tcpmsim::fit::describe_candidates);
   return kSuccess;
 }
 
@@ -544,9 +551,13 @@ int main(int argc, char** argv) {
   add_common(*validate_command, options);
 
   bool markdown = false;
+  bool families = false;
   CLI::App* kinds_command = app.add_subcommand(
       "kinds", "List every kind of component and signal a scenario may name, with its keys");
   kinds_command->add_flag("--markdown", markdown, "Markdown tables (docs/kinds.md)");
+  kinds_command->add_flag("--discover-families", families,
+                          "Only the effect families discover tries, one per line, in its order "
+                          "(as the kinds declare them)");
 
   CLI::App* coil_fit_command =
       add_analysis(app, "coil-fit",
@@ -750,6 +761,7 @@ int main(int argc, char** argv) {
   if (recover_command->parsed()) return guarded(recover, options);
   if (kinds_command->parsed()) {
     options.markdown = markdown;
+    options.discover_families = families;
     return guarded(list_kinds, options);
   }
   if (coil_fit_command->parsed()) return guarded(coil_fit, options);

@@ -7,6 +7,9 @@
 #include <optional>
 #include <stdexcept>
 
+#include "kinds/standard_kinds.h"
+#include "models/effects/effect_candidates.h"
+#include "models/muscle.h"
 #include "sim/config/config_error.h"
 #include "sim/value_check.h"
 
@@ -178,17 +181,164 @@ std::string only_muscle(const System& system) {
   return found;
 }
 
-const std::vector<std::string>& effect_names() {
-  static const std::vector<std::string> names = {"slow_relaxation",
-                                                 "hysteresis",
-                                                 "nonlinear_convection",
-                                                 "thermal_lag",
-                                                 "nonlinear_stiffness",
-                                                 "temperature_dependent_stiffness",
-                                                 "inductance_temperature",
-                                                 "viscoelastic_relaxation",
-                                                 "ratchet",
-                                                 "heating_dependent_convection"};
+namespace {
+
+// Every family any kind declares, with the kind that builds its sections, in catalogue order.
+struct DeclaredFamily {
+  const CandidateFamily* family;
+  std::string kind;  // the effect kind its sections are of ("" for a law term)
+};
+
+std::vector<DeclaredFamily> declared_families(const KindRegistry& kinds,
+                                              std::vector<CandidateDeclaration>& storage) {
+  std::vector<std::pair<std::string, const Kind*>> declaring;
+  for (const auto& category : kinds.categories())
+    for (const Kind* kind : kinds.kinds(category.name))
+      if (kind->candidates.has_value()) declaring.emplace_back(category.name, kind);
+  storage.clear();
+  storage.reserve(declaring.size());
+  std::vector<DeclaredFamily> families;
+  for (const auto& [category, kind] : declaring) {
+    storage.push_back(std::any_cast<const CandidateDeclaration&>(kind->candidates));
+    for (const auto& family : storage.back().families)
+      families.push_back({&family, category == kEffectCategory ? kind->name : ""});
+  }
+  std::stable_sort(families.begin(), families.end(), [](const auto& a, const auto& b) {
+    return a.family->position < b.family->position;
+  });
+  return families;
+}
+
+double scale_of(const BaseModel& base, CandidateScale scale) {
+  const double range = base.deflection ? base.deflection->second - base.deflection->first : 0.02;
+  switch (scale) {
+    case CandidateScale::one:
+      return 1.0;
+    case CandidateScale::k1:
+      return base.k1;
+    case CandidateScale::k2:
+      return base.k2;
+    case CandidateScale::conductance:
+      return base.conductance;
+    case CandidateScale::ambient:
+      return base.ambient;
+    case CandidateScale::range:
+      return range;
+    case CandidateScale::k1_range:
+      return base.k1 * range;
+    case CandidateScale::deflection_low:
+      return base.deflection ? base.deflection->first : 0.0;
+    case CandidateScale::deflection_high:
+      return base.deflection ? base.deflection->second : 0.0;
+    case CandidateScale::deflection_sum:
+      return base.deflection ? base.deflection->first + base.deflection->second : 0.0;
+    case CandidateScale::power_peak:
+      return base.power_peak;
+    case CandidateScale::coil_scale:
+      return base.lambda_scale > 0.0 ? base.lambda_scale : 1.0;
+  }
+  return 1.0;
+}
+
+double value_of(const BaseModel& base, const CandidateValue& value) {
+  return scale_of(base, value.scale) * value.factor / value.divisor + value.offset;
+}
+
+// Why a family cannot join this base model, or "".
+std::string missing_need(const BaseModel& base, const Scenario& scenario, CandidateNeed need) {
+  switch (need) {
+    case CandidateNeed::temperature:
+      if (base.temperature && base.heat_capacity > 0.0) return "";
+      return "the muscle reports no temperature (give the reduced form's force_per_kelvin, or use "
+             "the physical form)";
+    case CandidateNeed::deflection:
+      return base.deflection ? "" : "the measurement has no deflection channel to place it in";
+    case CandidateNeed::power:
+      return base.power_peak > 0.0 ? "" : "the measurement has no power channel";
+    case CandidateNeed::coil_output:
+      return base.coil_output ? "" : "no output of the coil (inductance or L*) is compared";
+    case CandidateNeed::coil_temperature_term:
+      if (base.temperature && base.inductance && scenario.system->parameter_index(base.lambda_path))
+        return "";
+      return "the muscle's coil has no temperature term to free";
+  }
+  return "";
+}
+
+void add_keys(CandidateBuilder& builder, const BaseModel& base,
+              const std::vector<CandidateKey>& keys) {
+  for (const auto& key : keys) {
+    if (key.lower && key.upper) {
+      builder.free(key.key, value_of(base, key.start), value_of(base, *key.lower),
+                   value_of(base, *key.upper), key.unit);
+    } else {
+      builder.fixed(key.key, value_of(base, key.start), key.unit);
+    }
+  }
+}
+
+EffectCandidate build_member(const BaseModel& base, const Scenario& scenario,
+                             const CandidateFamily& family, const std::string& kind,
+                             const CandidateMember& member) {
+  CandidateBuilder builder(base, family.name, member.member, member.order, family.description,
+                           family.signature);
+  if (member.term) {
+    // A law term: the muscle's section gets the key's value, the refit frees its parameter.
+    const CandidateKey& key = member.sections.front().front();
+    const std::string path = base.muscle + "." + member.term->section + "." + key.key;
+    const auto index = scenario.system->parameter_index(path);
+    const std::string unit =
+        scenario.system->parameters()[static_cast<std::size_t>(*index)].declaration.unit;
+    if (member.term->section != "inductance")
+      throw std::logic_error("a law term of the muscle's " + member.term->section +
+                             " section: the catalogue reads only its inductance section");
+    builder
+        .set_in_section(member.term->section, base.inductance, key.key,
+                        value_of(base, member.term->given), unit)
+        .free_base(path, value_of(base, key.start), value_of(base, *key.lower),
+                   value_of(base, *key.upper), unit);
+  } else if (member.grid) {
+    const CandidateGrid& grid = *member.grid;
+    for (const double point :
+         log_grid(value_of(base, grid.low), value_of(base, grid.high), grid.points)) {
+      builder.attach(kind).fixed(grid.key, point, grid.unit);
+      add_keys(builder, base, member.sections.front());
+    }
+  } else {
+    for (const auto& section : member.sections) {
+      builder.attach(kind);
+      add_keys(builder, base, section);
+    }
+  }
+  return builder.build();
+}
+
+}  // namespace
+
+std::string describe_candidates(const Kind& kind, bool markdown) {
+  if (!kind.candidates.has_value()) return "";
+  const auto& declaration = std::any_cast<const CandidateDeclaration&>(kind.candidates);
+  const std::string indent = markdown ? "" : "    ";
+  if (!declaration.excluded.empty())
+    return indent + "discover does not try it: " + declaration.excluded + "\n";
+  std::string text;
+  for (const auto& family : declaration.families) {
+    text += indent + "discover tries it as " + (markdown ? "`" + family.name + "`" : family.name) +
+            " (" + family.description + "; signature: " + family.signature + "), members: ";
+    for (std::size_t m = 0; m < family.members.size(); ++m) {
+      const auto& member = family.members[m];
+      text += (m ? "; " : "") + member.member + " (order " + std::to_string(member.order) + ")";
+    }
+    text += ".\n";
+  }
+  return text;
+}
+
+std::vector<std::string> effect_names() {
+  std::vector<CandidateDeclaration> storage;
+  std::vector<std::string> names;
+  for (const auto& declared : declared_families(standard_kinds(), storage))
+    names.push_back(declared.family->name);
   return names;
 }
 
@@ -196,154 +346,19 @@ Candidates effect_candidates(const Scenario& scenario, const Context& fitted,
                              const MeasuredData& data, const std::vector<std::string>& outputs) {
   const BaseModel base = read_base(scenario, fitted, data, outputs);
   Candidates result;
-  const auto skip = [&](const std::string& name, const std::string& reason) {
-    result.skipped.push_back({name, reason});
-  };
-  const auto add = [&](CandidateBuilder& builder) { result.candidates.push_back(builder.build()); };
-  const double k1 = base.k1, k2 = base.k2, c = base.heat_capacity, ha = base.conductance;
-  // The measured deflection range scales hysteresis radii and knees (2 cm without one).
-  const double range = base.deflection ? base.deflection->second - base.deflection->first : 0.02;
-
-  // Further viscoelastic branches (a Prony series), told apart by their relaxation times:
-  // minutes (warm-up) for slow_relaxation, seconds (the SLS's own order) for
-  // viscoelastic_relaxation; the ranges meet at 30 s and do not overlap. Zero stiffness: none.
-  const std::string slow = "a further viscoelastic branch with a long time constant (warm-up)";
-  const std::string drift = "drift; low-frequency residual power";
-  CandidateBuilder one_slow(base, "slow_relaxation", "one Maxwell branch", 1, slow, drift);
-  one_slow.attach("maxwell_branch")
-      .free("stiffness", 0.0, 0.0, 3.0 * k2, "N/m")
-      .free("time_constant", 200.0, 30.0, 3000.0, "s");
-  add(one_slow);
-  CandidateBuilder two_slow(base, "slow_relaxation", "two Maxwell branches (Prony series)", 2, slow,
-                            drift);
-  two_slow.attach("maxwell_branch")
-      .free("stiffness", 0.0, 0.0, 3.0 * k2, "N/m")
-      .free("time_constant", 100.0, 30.0, 300.0, "s")
-      .attach("maxwell_branch")
-      .free("stiffness", 0.0, 0.0, 3.0 * k2, "N/m")
-      .free("time_constant", 1000.0, 300.0, 3000.0, "s");
-  add(two_slow);
-
-  // Rate-independent hysteresis: stop operators weighted by non-negative stiffnesses (zero: no
-  // hysteresis), one with a free radius (Dahl's element) or a Prandtl-Ishlinskii operator on a
-  // grid of radii over the measured range.
-  const std::string hysteresis = "rate-independent hysteresis in the force";
-  const std::string direction =
-      "residual against the direction of the last motion; loop area flat in frequency";
-  CandidateBuilder dahl(base, "hysteresis", "one Dahl element, free radius", 1, hysteresis,
-                        direction);
-  dahl.attach("hysteresis")
-      .free("stiffness", 0.0, 0.0, 50.0 * k1, "N/m")
-      .free("radius", 0.02 * range, 0.002 * range, 0.5 * range, "m");
-  add(dahl);
-  const auto radii = log_grid(0.02 * range, 0.3 * range, 4);
-  CandidateBuilder play(base, "hysteresis", "Prandtl-Ishlinskii operator, 4 radii", 4, hysteresis,
-                        direction);
-  for (const double radius : radii)
-    play.attach("hysteresis")
-        .fixed("radius", radius, "m")
-        .free("stiffness", 0.0, 0.0, 20.0 * k1, "N/m");
-  add(play);
-
-  if (!base.temperature || !(c > 0.0)) {
-    for (const char* name :
-         {"nonlinear_convection", "thermal_lag", "temperature_dependent_stiffness", "ratchet",
-          "heating_dependent_convection"}) {
-      skip(name,
-           "the muscle reports no temperature (give the reduced form's force_per_kelvin, or use "
-           "the physical form)");
+  std::vector<CandidateDeclaration> storage;
+  for (const auto& declared : declared_families(standard_kinds(), storage)) {
+    const CandidateFamily& family = *declared.family;
+    std::string missing;
+    for (const CandidateNeed need : family.needs)
+      if (missing.empty()) missing = missing_need(base, scenario, need);
+    if (!missing.empty()) {
+      result.skipped.push_back({family.name, missing});
+      continue;
     }
-  } else {
-    CandidateBuilder convection(base, "nonlinear_convection",
-                                "G dT_ref (dT/dT_ref)^n, free exponent", 1,
-                                "heat loss growing faster than linearly with the temperature rise",
-                                "residual against temperature; against power at steady heating");
-    convection.attach("free_convection")
-        .free("conductance", 0.0, 0.0, 3.0 * ha, "W/K")
-        .fixed("reference_difference", 50.0, "K")
-        .free("exponent", 1.25, 1.0, 2.0, "1");
-    add(convection);
-    CandidateBuilder lag(base, "thermal_lag", "a share of the power through a first-order lag", 1,
-                         "the heat reaches the polymer late (heater wire, coating)",
-                         "residual cross-correlated with power at short lags");
-    lag.attach("heating_lag")
-        .free("share", 0.0, 0.0, 1.0, "1")
-        .free("time_constant", 2.0, 0.1, 30.0, "s");
-    add(lag);
-    // An irreversible loss of force above a threshold temperature, up to some k1 x range per
-    // 1000 K s.
-    CandidateBuilder ratchet(base, "ratchet", "dF/dt = -g max(0, T - T_th), kept on cooling", 1,
-                             "the rest length creeps irreversibly with each heating cycle",
-                             "drift that steps down with each heating; residual against the "
-                             "heat received");
-    ratchet.attach("ratchet")
-        .free("rate", 0.0, 0.0, k1 * range / 1000.0, "N/(K*s)")
-        .free("threshold", base.ambient + 10.0, base.ambient, base.ambient + 100.0, "K");
-    add(ratchet);
-    if (base.power_peak > 0.0) {
-      CandidateBuilder fan(base, "heating_dependent_convection",
-                           "Q = G_P (P_b / P_peak) (T - T_amb), P_b lagging P", 1,
-                           "the heat-transfer coefficient rises while the heating runs (a fan "
-                           "or heat gun)",
-                           "residual against power times the temperature rise");
-      fan.attach("heating_convection")
-          .free("conductance", 0.0, 0.0, 3.0 * ha, "W/K")
-          .fixed("reference_power", base.power_peak, "W")
-          .free("time_constant", 1.0, 0.05, 60.0, "s");
-      add(fan);
-    } else {
-      skip("heating_dependent_convection", "the measurement has no power channel");
-    }
+    for (const auto& member : family.members)
+      result.candidates.push_back(build_member(base, scenario, family, declared.kind, member));
   }
-  if (base.deflection) {
-    const auto [low, high] = *base.deflection;
-    CandidateBuilder knee(base, "nonlinear_stiffness", "a softplus knee, free sharpness", 1,
-                          "stiffness that depends on deflection (coil contact, preload knee)",
-                          "residual against deflection");
-    knee.attach("nonlinear_stiffness")
-        .free("stiffness", 0.0, -0.9 * k1, 5.0 * k1, "N/m")
-        .free("knee_deflection", 0.5 * (low + high), low, high, "m")
-        .free("knee_width", 0.1 * range, 0.01 * range, 0.5 * range, "m");
-    add(knee);
-  } else {
-    skip("nonlinear_stiffness", "the measurement has no deflection channel to place a knee in");
-  }
-  if (base.temperature && c > 0.0) {
-    CandidateBuilder softening(
-        base, "temperature_dependent_stiffness", "s_ref (1 + alpha (T - T_ref)) in parallel", 1,
-        "stiffness that changes with temperature", "residual against temperature times deflection");
-    softening.attach("thermal_softening")
-        .free("reference_stiffness", 0.0, 0.0, k1, "N/m")
-        .free("temperature_coefficient", 0.0, -0.03, 0.03, "1/K")
-        .fixed("reference_temperature", base.ambient, "K");
-    add(softening);
-  }
-  if (!base.coil_output) {
-    skip("inductance_temperature", "no output of the coil (inductance or L*) is compared");
-  } else if (!base.temperature || !base.inductance ||
-             !scenario.system->parameter_index(base.lambda_path)) {
-    skip("inductance_temperature", "the muscle's coil has no temperature term to free");
-  } else {
-    // The impedance law's own lambda_T (T - T_ref) term, zero in the base model: a coil built
-    // without it has no temperature input, so the scenario gives it a value and the refit starts
-    // it at zero.
-    const double scale = base.lambda_scale > 0.0 ? base.lambda_scale : 1.0;
-    const auto index = *scenario.system->parameter_index(base.lambda_path);
-    const std::string unit =
-        scenario.system->parameters()[static_cast<std::size_t>(index)].declaration.unit;
-    CandidateBuilder coil(base, "inductance_temperature", "lambda_T (T - T_ref)", 1,
-                          "the inductance measure depends on temperature",
-                          "L* residual against temperature");
-    coil.set_in_section("inductance", base.inductance, "lambda_T", 1e-5 * scale, unit)
-        .free_base(base.lambda_path, 0.0, -0.01 * scale, 0.01 * scale, unit);
-    add(coil);
-  }
-  CandidateBuilder branch(base, "viscoelastic_relaxation", "one Maxwell branch", 1,
-                          "an SLS branch, for base models that lack one", "residual against dx/dt");
-  branch.attach("maxwell_branch")
-      .free("stiffness", 0.0, 0.0, 5.0 * k2, "N/m")
-      .free("time_constant", 5.0, 0.05, 30.0, "s");
-  add(branch);
   return result;
 }
 

@@ -27,10 +27,13 @@ struct EffectCandidate {
   std::vector<double> nested;            // per parameter: where the member is the base model
 };
 
-// The ten families of the catalogue, in its order: slow_relaxation, hysteresis,
-// nonlinear_convection, thermal_lag, nonlinear_stiffness, temperature_dependent_stiffness,
-// inductance_temperature, viscoelastic_relaxation, ratchet, heating_dependent_convection.
-const std::vector<std::string>& effect_names();
+// The families of the catalogue, in its order, as the kinds of the standard registry declare
+// them (Kind::candidates, models/effects/effect_candidates.h).
+std::vector<std::string> effect_names();
+
+// How discover tries `kind` (its declared families and their members, or why not), for
+// `tcpmsim kinds` (sim/kind_listing.h's KindNotes); "" for a kind that declares nothing.
+std::string describe_candidates(const Kind& kind, bool markdown);
 
 // The one muscle of a base model (its instance name); std::invalid_argument if it has none or
 // several.

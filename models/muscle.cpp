@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "models/coil_impedance.h"
+#include "models/effects/effect_candidates.h"
 #include "models/laws/thermal_force.h"
 #include "models/sls_mechanics.h"
 #include "models/thermal_force.h"
@@ -140,6 +141,30 @@ void check_resting_balance(const ConfigNode& value, const std::string& muscle,
   }
 }
 
+namespace {
+
+// The coil law's own lambda_T (T - T_ref) term, zero in a base model without it: a coil built
+// without it has no temperature input, so the candidate's scenario gives it a value and the
+// refit starts it at zero (models/effects/effect_candidates.h).
+CandidateDeclaration coil_term_candidates() {
+  using S = CandidateScale;
+  CandidateMember term{"lambda_T (T - T_ref)",
+                       1,
+                       {{{"lambda_T", "", scaled(0.0, S::coil_scale), scaled(-0.01, S::coil_scale),
+                          scaled(0.01, S::coil_scale)}}},
+                       {},
+                       CandidateLawTerm{"inductance", scaled(1e-5, S::coil_scale)}};
+  return {{{"inductance_temperature",
+            6,
+            "the inductance measure depends on temperature",
+            "L* residual against temperature",
+            {CandidateNeed::coil_output, CandidateNeed::coil_temperature_term},
+            {term}}},
+          ""};
+}
+
+}  // namespace
+
 void register_muscle_kinds(KindRegistry& kinds) {
   kinds.add_category({kMuscleCategory, "muscles", "", "",
                       "a twisted and coiled polymer muscle: thermal force, SLS mechanics and "
@@ -179,7 +204,8 @@ load: {type: deflection, deflection: 20 mm}
              {{example_muscle_scenario("", ""), "muscle"},
               {physical, "muscle"},
               {constant_resistance, "muscle"}},
-             InstanceBuilder(build_muscle)});
+             InstanceBuilder(build_muscle),
+             coil_term_candidates()});
   kinds.add({kThermalForceCategory,
              "physical",
              "F_T = phi_T (T - T_ref) with a thermal node C dT/dt = eta P - hA (T - T_amb) - "

@@ -22,7 +22,7 @@ import statistics
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from matrix_runs import finish, parser_for, run, run_cases  # noqa: E402
+from matrix_runs import declared_families, finish, parser_for, run, run_cases  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BASE = os.path.join(ROOT, "configs/discover/ch7_base.yaml")
@@ -114,8 +114,11 @@ def effect_forms(name, rng):
                 f"{{type: heating_convection, conductance: {0.05 * size} W/K, "
                 "reference_power: 3.12 W, time_constant: 10 s}")),
         ]
-    else:
+    elif name == "none":
         forms = [("none", [])]
+    else:
+        sys.exit(f"discover_matrix: no hidden forms of '{name}' (a family discover tries): add "
+                 "them to effect_forms")
     return forms[rng.randrange(len(forms))]
 
 
@@ -220,14 +223,13 @@ def table(results):
 
 
 def main():
-    parser = parser_for(__doc__, ROOT, "results/discover_matrix",
-                        "none,slow_relaxation,hysteresis,nonlinear_convection,thermal_lag,"
-                        "nonlinear_stiffness,temperature_dependent_stiffness,"
-                        "inductance_temperature,viscoelastic_relaxation,ratchet,"
-                        "heating_dependent_convection", "hidden effects")
+    parser = parser_for(__doc__, ROOT, "results/discover_matrix", "hidden effects")
     parser.add_argument("--check", action="store_true",
                         help="exit 1 unless every case's verdict is its hidden effect (none: none)")
     arguments = parser.parse_args()
+    if arguments.effects is None:
+        families = declared_families(os.path.join(arguments.build, "tcpmsim"))
+        arguments.effects = ",".join(["none"] + families)
     os.makedirs(arguments.out, exist_ok=True)
     inputs = os.path.join(arguments.out, "protocol.h5")
     if run([os.path.join(arguments.build, "tcpmsim"), "run", PROTOCOL, "-o", inputs, "-q"],

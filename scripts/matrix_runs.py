@@ -17,6 +17,16 @@ def run(command, log):
         return subprocess.run(command, stdout=file, stderr=subprocess.STDOUT, check=False).returncode
 
 
+def declared_families(tool):
+    """The effect families discover tries, in its order, as the effect kinds declare them with
+    their registration (`tcpmsim kinds --discover-families`)."""
+    if not os.access(tool, os.X_OK):
+        sys.exit(f"no program {tool} (build tcpmsim first, or --build)")
+    listed = subprocess.run([tool, "kinds", "--discover-families"], capture_output=True, text=True,
+                            check=True)
+    return [line.strip() for line in listed.stdout.splitlines() if line.strip()]
+
+
 def run_cases(cases, one_case, at_once, printed):
     """`one_case(*case)` for every case, `at_once` at a time, in order; prints the keys
     `printed` of each result as JSON as it ends."""
@@ -43,7 +53,7 @@ def finish(name, out, results, text, expected, check):
         sys.exit(f"{name}: wrong verdicts: " + ", ".join(wrong))
 
 
-def parser_for(doc, root, out, effects, effects_help):
+def parser_for(doc, root, out, effects_help):
     """The command line both matrices take; each adds its own options."""
     parser = argparse.ArgumentParser(description=doc,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -51,7 +61,9 @@ def parser_for(doc, root, out, effects, effects_help):
     parser.add_argument("--out", default=os.path.join(root, out))
     parser.add_argument("--noise", default="1,2,4", help="load-cell noise levels [mN]")
     parser.add_argument("--seeds", type=int, default=5)
-    parser.add_argument("--effects", default=effects, help=effects_help)
+    parser.add_argument("--effects", default=None,
+                        help=effects_help + "; default: none and every family discover tries "
+                        "(tcpmsim kinds --discover-families)")
     parser.add_argument("--cases-at-once", type=int, default=1, help="discover runs in parallel")
     parser.add_argument("--threads", type=int, default=2, help="threads of each discover run")
     parser.add_argument("--plots", action="store_true", help="draw each case's pictures")

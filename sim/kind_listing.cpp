@@ -133,7 +133,7 @@ VariantKeys variant_keys(const KindRegistry& kinds, std::shared_ptr<const UnitSy
 }
 
 std::string describe_kinds(const KindRegistry& kinds, std::shared_ptr<const UnitSystem> units,
-                           bool markdown) {
+                           bool markdown, const KindNotes& more) {
   std::ostringstream out;
   if (markdown) {
     out << "# Kinds of component and signal\n\nMade by `tcpmsim kinds --markdown` from the "
@@ -169,6 +169,9 @@ std::string describe_kinds(const KindRegistry& kinds, std::shared_ptr<const Unit
       }
       for (const auto& key : kind_keys(kinds, *kind, units)) out << row(key, markdown);
       out << "\n";
+      if (more) {
+        if (const std::string notes = more(*kind, markdown); !notes.empty()) out << notes << "\n";
+      }
     }
   }
   return out.str();

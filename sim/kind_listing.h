@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <set>
 #include <string>
@@ -16,8 +17,11 @@ namespace tcpmsim {
 // The keys are not written down twice: each kind's examples are built and what the code asked
 // of the scenario is listed, so the listing cannot drift from the code. Sections another kind
 // reads (a signal, an effect) are listed as such, not key by key. `markdown` gives tables.
+// `more`, when given, adds a paragraph per kind from what layers above the engine know of it
+// (Kind::candidates: how `tcpmsim discover` tries an effect), or "".
+using KindNotes = std::function<std::string(const Kind& kind, bool markdown)>;
 std::string describe_kinds(const KindRegistry& kinds, std::shared_ptr<const UnitSystem> units,
-                           bool markdown);
+                           bool markdown, const KindNotes& more = {});
 
 // The keys one kind's examples read under its section (relative paths, "[]" for any index).
 struct KindKey {

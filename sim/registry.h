@@ -50,6 +50,9 @@ struct Kind {
   std::string summary;
   std::vector<KindExample> examples;
   std::any builder;
+  // What tools above the model know of the kind: for an effect (and the muscle's own law
+  // terms), how `tcpmsim discover` tries it (models/effects/effect_candidates.h).
+  std::any candidates = {};
 };
 
 // Builds one instance of a top-level category from its section.

@@ -8,6 +8,7 @@
 #include <map>
 
 #include "identification/effect_catalogue.h"
+#include "models/effects/effect_candidates.h"
 #include "models/muscle.h"
 #include "sim/run.h"
 #include "tests/support/test_support.h"
@@ -118,30 +119,38 @@ TEST_CASE("Candidates that cannot attach to a base model are skipped with the re
     }
     CHECK(skipped == std::vector<std::string>{
                          "nonlinear_convection", "thermal_lag", "temperature_dependent_stiffness",
-                         "ratchet", "heating_dependent_convection", "inductance_temperature"});
+                         "inductance_temperature", "ratchet", "heating_dependent_convection"});
   }
 }
 
 TEST_CASE("Every effect kind is a discover candidate, or is excluded with the reason") {
-  // An effect added to the registry without a candidate would never be tried by discover. The
-  // kinds excluded, and why:
-  const std::map<std::string, std::string> excluded = {
-      {"thermal_lag",
-       "a two-node wire cannot start at zero size (C_w > 0): heating_lag is the thermal-lag "
-       "family's nested member"},
-  };
+  // Each effect kind declares with its registration how discover tries it (its families) or
+  // why it does not; a kind added without either would never be tried. A declared family's
+  // candidates attach that kind.
   const std::string data_path = protocol_record("60 s");
   const Scenario base = base_model(data_path);
   const MeasuredData data = read_measured_data(data_path, *shared_units());
   const auto candidates = fit::effect_candidates(base, base.make_context(), data,
                                                  {"load.force", "muscle.inductance_measure"});
-  for (const auto& kind : standard_kinds().kind_names(kEffectCategory)) {
-    INFO(kind);
+  const KindRegistry kinds = standard_kinds();
+  std::vector<std::string> declared_families;
+  for (const Kind* kind : kinds.kinds(kEffectCategory)) {
+    INFO(kind->name);
+    REQUIRE(kind->candidates.has_value());
+    const auto& declaration = std::any_cast<const CandidateDeclaration&>(kind->candidates);
+    CHECK(declaration.families.empty() != declaration.excluded.empty());
     bool attached = false;
     for (const auto& candidate : candidates.candidates) {
       for (const auto& override : candidate.overrides)
-        attached = attached || override.find("type: " + kind + ",") != std::string::npos;
+        attached = attached || override.find("type: " + kind->name + ",") != std::string::npos;
     }
-    CHECK(attached != (excluded.count(kind) == 1));
+    CHECK(attached == !declaration.families.empty());
+    for (const auto& family : declaration.families) declared_families.push_back(family.name);
   }
+  // The muscle's own coil term is the one family not of an effect kind.
+  declared_families.push_back("inductance_temperature");
+  std::sort(declared_families.begin(), declared_families.end());
+  auto names = fit::effect_names();
+  std::sort(names.begin(), names.end());
+  CHECK(declared_families == names);
 }

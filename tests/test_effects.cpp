@@ -193,6 +193,35 @@ TEST_CASE("An effect at zero size leaves the muscle as it was (discover's nested
   }
 }
 
+TEST_CASE("A stiffness slope and bend change the muscle's stiffness with temperature, from zero") {
+  // Under an imposed deflection the added term is F_s = (beta + gamma dT) dT x, dT = T - T_ref,
+  // on top of the muscle without it (the SLS's states follow x alone), whatever the signs: a
+  // parallel spring of zero size could not soften (its floor), the slope and bend can.
+  const std::vector<std::string> heated = {
+      "drive.power={type: steps, initial: 0 W, times: [10 s], values: [1.5 W]}"};
+  const Trace bare = simulate(physical_muscle_yaml(), heated);
+  for (const auto& [beta, gamma] : {std::pair{-0.05, 0.0}, std::pair{0.02, -1e-3}}) {
+    auto with = heated;
+    with.push_back(
+        "muscle.effects=[{type: thermal_softening, name: s, reference_stiffness: 0 N/m, "
+        "temperature_coefficient: 0 1/K, reference_temperature: 20 degC, "
+        "stiffness_slope: " +
+        number(beta) + " N/(m*K), stiffness_curvature: " + number(gamma) + " N/(m*K^2)}]");
+    const Trace sloped = simulate(physical_muscle_yaml(), with);
+    INFO("beta = " << beta << ", gamma = " << gamma);
+    REQUIRE(sloped.time.size() == bare.time.size());
+    double largest = 0.0;
+    for (std::size_t i = 0; i < bare.time.size(); ++i) {
+      const double rise = bare["muscle/temperature"][i] - 293.15;
+      const double expected = (beta + gamma * rise) * rise * bare["muscle/deflection"][i];
+      const double added = sloped["muscle/force"][i] - bare["muscle/force"][i];
+      CHECK(std::abs(added - expected) <= allowed(1e-8, 0.3));
+      largest = std::max(largest, std::abs(expected));
+    }
+    CHECK(largest > 1e-3);  // the term is of millinewtons here, well above the tolerance
+  }
+}
+
 TEST_CASE("Hysteresis given by its radius is a stop operator: force linear in its weight") {
   // dz/dt = k_h v - |v| z / r: on a rising branch z = k_h r - (k_h r - z0) exp(-dx / r), and
   // doubling k_h doubles z (the Prandtl-Ishlinskii operator is linear in its weights).

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "identification/effect_catalogue.h"
 #include "models/muscle.h"
 #include "sim/kind_listing.h"
 #include "sim/parametric_component.h"
@@ -95,7 +96,8 @@ TEST_CASE("docs/kinds.md is the listing the registry produces") {
   std::stringstream written;
   written << file.rdbuf();
   // Regenerate with: build/tcpmsim kinds --markdown > docs/kinds.md
-  CHECK(written.str() == describe_kinds(standard_kinds(), shared_units(), true));
+  CHECK(written.str() ==
+        describe_kinds(standard_kinds(), shared_units(), true, fit::describe_candidates));
 }
 
 namespace {

@@ -1,5 +1,6 @@
 #include "models/effects/effect_kinds.h"
 
+#include "models/effects/effect_candidates.h"
 #include "models/effects/free_convection.h"
 #include "models/effects/heating_convection.h"
 #include "models/effects/heating_lag.h"
@@ -139,6 +140,207 @@ void attach_heating_convection(const ConfigNode& section, const MuscleAttachment
   connect_heat_term(system, convection, muscle);
 }
 
+// ---------------------------------------------------------------------------------------------
+// How `tcpmsim discover` tries each kind (models/effects/effect_candidates.h). Every member is
+// the base model at its starts (zero size); the bounds are in the base model's scales.
+
+using S = CandidateScale;
+
+CandidateKey free_key(std::string key, std::string unit, CandidateValue start, CandidateValue lower,
+                      CandidateValue upper) {
+  return {std::move(key), std::move(unit), start, lower, upper};
+}
+
+CandidateKey fixed_key(std::string key, std::string unit, CandidateValue value) {
+  return {std::move(key), std::move(unit), value, std::nullopt, std::nullopt};
+}
+
+// A Maxwell branch of zero stiffness whose time constant is free within [low, high].
+std::vector<CandidateKey> branch_keys(double stiffness_limit, double start, double low,
+                                      double high) {
+  return {free_key("stiffness", "N/m", fixed_value(0.0), fixed_value(0.0),
+                   scaled(stiffness_limit, S::k2)),
+          free_key("time_constant", "s", fixed_value(start), fixed_value(low), fixed_value(high))};
+}
+
+const char* const kDrift = "drift; low-frequency residual power";
+
+CandidateDeclaration maxwell_branch_candidates() {
+  CandidateFamily slow{"slow_relaxation",
+                       0,
+                       "a further viscoelastic branch with a long time constant (warm-up)",
+                       kDrift,
+                       {},
+                       {}};
+  // A Prony series told apart from viscoelastic_relaxation by its relaxation times: minutes
+  // (warm-up) against seconds (the SLS's own order); the ranges meet at 30 s.
+  slow.members.push_back(
+      {"one Maxwell branch", 1, {branch_keys(3.0, 200.0, 30.0, 3000.0)}, {}, {}});
+  slow.members.push_back(
+      {"two Maxwell branches (Prony series)",
+       2,
+       {branch_keys(3.0, 100.0, 30.0, 300.0), branch_keys(3.0, 1000.0, 300.0, 3000.0)},
+       {},
+       {}});
+  CandidateFamily branch{"viscoelastic_relaxation",
+                         7,
+                         "an SLS branch, for base models that lack one",
+                         "residual against dx/dt",
+                         {},
+                         {{"one Maxwell branch", 1, {branch_keys(5.0, 5.0, 0.05, 30.0)}, {}, {}}}};
+  return {{slow, branch}, ""};
+}
+
+CandidateDeclaration hysteresis_candidates() {
+  // Stop operators weighted by non-negative stiffnesses (zero: no hysteresis): one of free
+  // radius (Dahl's element), or a Prandtl-Ishlinskii operator on radii over the measured range.
+  CandidateFamily family{
+      "hysteresis",
+      1,
+      "rate-independent hysteresis in the force",
+      "residual against the direction of the last motion; loop area flat in frequency",
+      {},
+      {}};
+  family.members.push_back(
+      {"one Dahl element, free radius",
+       1,
+       {{free_key("stiffness", "N/m", fixed_value(0.0), fixed_value(0.0), scaled(50.0, S::k1)),
+         free_key("radius", "m", scaled(0.02, S::range), scaled(0.002, S::range),
+                  scaled(0.5, S::range))}},
+       {},
+       {}});
+  family.members.push_back(
+      {"Prandtl-Ishlinskii operator, 4 radii",
+       4,
+       {{free_key("stiffness", "N/m", fixed_value(0.0), fixed_value(0.0), scaled(20.0, S::k1))}},
+       CandidateGrid{"radius", "m", scaled(0.02, S::range), scaled(0.3, S::range), 4},
+       {}});
+  return {{family}, ""};
+}
+
+CandidateDeclaration free_convection_candidates() {
+  return {{{"nonlinear_convection",
+            2,
+            "heat loss growing faster than linearly with the temperature rise",
+            "residual against temperature; against power at steady heating",
+            {CandidateNeed::temperature},
+            {{"G dT_ref (dT/dT_ref)^n, free exponent",
+              1,
+              {{free_key("conductance", "W/K", fixed_value(0.0), fixed_value(0.0),
+                         scaled(3.0, S::conductance)),
+                fixed_key("reference_difference", "K", fixed_value(50.0)),
+                free_key("exponent", "1", fixed_value(1.25), fixed_value(1.0), fixed_value(2.0))}},
+              {},
+              {}}}}},
+          ""};
+}
+
+CandidateDeclaration heating_lag_candidates() {
+  return {
+      {{"thermal_lag",
+        3,
+        "the heat reaches the polymer late (heater wire, coating)",
+        "residual cross-correlated with power at short lags",
+        {CandidateNeed::temperature},
+        {{"a share of the power through a first-order lag",
+          1,
+          {{free_key("share", "1", fixed_value(0.0), fixed_value(0.0), fixed_value(1.0)),
+            free_key("time_constant", "s", fixed_value(2.0), fixed_value(0.1), fixed_value(30.0))}},
+          {},
+          {}}}}},
+      ""};
+}
+
+CandidateDeclaration nonlinear_stiffness_candidates() {
+  return {
+      {{"nonlinear_stiffness",
+        4,
+        "stiffness that depends on deflection (coil contact, preload knee)",
+        "residual against deflection",
+        {CandidateNeed::deflection},
+        {{"a softplus knee, free sharpness",
+          1,
+          {{free_key("stiffness", "N/m", fixed_value(0.0), scaled(-0.9, S::k1), scaled(5.0, S::k1)),
+            free_key("knee_deflection", "m", scaled(0.5, S::deflection_sum),
+                     scaled(1.0, S::deflection_low), scaled(1.0, S::deflection_high)),
+            free_key("knee_width", "m", scaled(0.1, S::range), scaled(0.01, S::range),
+                     scaled(0.5, S::range))}},
+          {},
+          {}}}}},
+      ""};
+}
+
+// The thermal_softening keys of a stiffness that changes with the temperature rise dT from the
+// ambient: beta dT (+ gamma dT^2), within +-k1 over 50 K (gamma: over 50 K squared).
+std::vector<CandidateKey> slope_keys(bool bend) {
+  std::vector<CandidateKey> keys = {
+      fixed_key("reference_stiffness", "N/m", fixed_value(0.0)),
+      fixed_key("temperature_coefficient", "1/K", fixed_value(0.0)),
+      fixed_key("reference_temperature", "K", scaled(1.0, S::ambient)),
+      free_key("stiffness_slope", "N/(m*K)", fixed_value(0.0), scaled(-0.02, S::k1),
+               scaled(0.02, S::k1))};
+  if (bend) {
+    keys.push_back(free_key("stiffness_curvature", "N/(m*K^2)", fixed_value(0.0),
+                            scaled(-4e-4, S::k1), scaled(4e-4, S::k1)));
+  }
+  return keys;
+}
+
+CandidateDeclaration thermal_softening_candidates() {
+  // The muscle's stiffness changing linearly with temperature, either sign, from zero: a
+  // parallel spring of zero size (the floored s_ref form) could only stiffen from there.
+  return {{{"temperature_dependent_stiffness",
+            5,
+            "stiffness that changes with temperature",
+            "residual against temperature times deflection",
+            {CandidateNeed::temperature},
+            {{"k1 + beta (T - T_ref), free slope", 1, {slope_keys(false)}, {}, {}},
+             {"k1 + beta dT + gamma dT^2, a bend (a transition)", 2, {slope_keys(true)}, {}, {}}}}},
+          ""};
+}
+
+CandidateDeclaration ratchet_candidates() {
+  // An irreversible loss of force above a threshold temperature, up to k1 x range per 1000 K s.
+  return {{{"ratchet",
+            8,
+            "the rest length creeps irreversibly with each heating cycle",
+            "drift that steps down with each heating; residual against the heat received",
+            {CandidateNeed::temperature},
+            {{"dF/dt = -g max(0, T - T_th), kept on cooling",
+              1,
+              {{free_key("rate", "N/(K*s)", fixed_value(0.0), fixed_value(0.0),
+                         scaled(1.0, S::k1_range, 0.0, 1000.0)),
+                free_key("threshold", "K", scaled(1.0, S::ambient, 10.0), scaled(1.0, S::ambient),
+                         scaled(1.0, S::ambient, 100.0))}},
+              {},
+              {}}}}},
+          ""};
+}
+
+CandidateDeclaration heating_convection_candidates() {
+  return {{{"heating_dependent_convection",
+            9,
+            "the heat-transfer coefficient rises while the heating runs (a fan or heat gun)",
+            "residual against power times the temperature rise",
+            {CandidateNeed::temperature, CandidateNeed::power},
+            {{"Q = G_P (P_b / P_peak) (T - T_amb), P_b lagging P",
+              1,
+              {{free_key("conductance", "W/K", fixed_value(0.0), fixed_value(0.0),
+                         scaled(3.0, S::conductance)),
+                fixed_key("reference_power", "W", scaled(1.0, S::power_peak)),
+                free_key("time_constant", "s", fixed_value(1.0), fixed_value(0.05),
+                         fixed_value(60.0))}},
+              {},
+              {}}}}},
+          ""};
+}
+
+CandidateDeclaration thermal_lag_exclusion() {
+  return {{},
+          "its family, thermal_lag, is tried as heating_lag: a wire node's capacity cannot reach "
+          "zero (the base model) without a stiff limit, a lagged share of the power can"};
+}
+
 }  // namespace
 
 void register_effect_kinds(KindRegistry& kinds) {
@@ -154,7 +356,8 @@ void register_effect_kinds(KindRegistry& kinds) {
                                        "stiffness: 1.5 mN/mm, time_constant: 20 s}\n",
                                        ""),
                "muscle.effects[0]"}},
-             EffectBuilder(attach_maxwell_branch)});
+             EffectBuilder(attach_maxwell_branch),
+             maxwell_branch_candidates()});
   kinds.add({kEffectCategory,
              "free_convection",
              "laminar free convection, Q = G dT_ref (dT/dT_ref)^(5/4), in the thermal node's "
@@ -173,18 +376,27 @@ drive: {mode: power, power: 1 W}
 load: {type: deflection, deflection: 20 mm}
 )",
                "muscle.effects[0]"}},
-             EffectBuilder(attach_free_convection)});
+             EffectBuilder(attach_free_convection),
+             free_convection_candidates()});
   kinds.add({kEffectCategory,
              "thermal_softening",
              "a spring in parallel with the SLS whose stiffness falls with temperature, "
-             "s = max(0, s_ref (1 + alpha (T - T_ref))): a heated polymer softens",
+             "s = max(0, s_ref (1 + alpha (T - T_ref))) + beta (T - T_ref): a heated polymer "
+             "softens (beta, stiffness_slope, optional: the muscle's own stiffness, either sign)",
              {{example_muscle_scenario(
                    "  effects:\n    - {type: thermal_softening, name: softening, "
                    "reference_stiffness: 5 mN/mm, temperature_coefficient: -0.01 1/K, "
                    "reference_temperature: 23 degC}\n",
                    ""),
+               "muscle.effects[0]"},
+              {example_muscle_scenario(
+                   "  effects:\n    - {type: thermal_softening, name: softening, "
+                   "reference_stiffness: 0 N/m, temperature_coefficient: 0 1/K, "
+                   "reference_temperature: 23 degC, stiffness_slope: -0.05 mN/(mm*K)}\n",
+                   ""),
                "muscle.effects[0]"}},
-             EffectBuilder(attach_thermal_softening)});
+             EffectBuilder(attach_thermal_softening),
+             thermal_softening_candidates()});
   kinds.add({kEffectCategory,
              "hysteresis",
              "rate-independent hysteresis in the force (Dahl): dz/dt = k_h (v - |v| z/F_h), "
@@ -200,7 +412,8 @@ load: {type: deflection, deflection: 20 mm}
                                        "3 mm}\n",
                                        ""),
                "muscle.effects[0]"}},
-             EffectBuilder(attach_hysteresis)});
+             EffectBuilder(attach_hysteresis),
+             hysteresis_candidates()});
   kinds.add({kEffectCategory,
              "nonlinear_stiffness",
              "a stiffness that engages past a knee deflection (coil contact): F = k_n w "
@@ -210,7 +423,8 @@ load: {type: deflection, deflection: 20 mm}
                                        "knee_width: 1 mm}\n",
                                        ""),
                "muscle.effects[0]"}},
-             EffectBuilder(attach_nonlinear_stiffness)});
+             EffectBuilder(attach_nonlinear_stiffness),
+             nonlinear_stiffness_candidates()});
   kinds.add({kEffectCategory,
              "thermal_lag",
              "the heater wire as a second thermal node: C_w dT_w/dt = P - G_w (T_w - T), the "
@@ -219,7 +433,8 @@ load: {type: deflection, deflection: 20 mm}
                                        "heat_capacity: 0.05 J/K, conductance: 0.5 W/K}\n",
                                        ""),
                "muscle.effects[0]"}},
-             EffectBuilder(attach_thermal_lag)});
+             EffectBuilder(attach_thermal_lag),
+             thermal_lag_exclusion()});
   kinds.add({kEffectCategory,
              "heating_lag",
              "a share a of the heating power reaches the polymer through a first-order lag: "
@@ -228,7 +443,8 @@ load: {type: deflection, deflection: 20 mm}
                                        "share: 0.5, time_constant: 2 s}\n",
                                        ""),
                "muscle.effects[0]"}},
-             EffectBuilder(attach_heating_lag)});
+             EffectBuilder(attach_heating_lag),
+             heating_lag_candidates()});
   kinds.add({kEffectCategory,
              "ratchet",
              "an irreversible loss of force as the rest length creeps above a threshold "
@@ -237,7 +453,8 @@ load: {type: deflection, deflection: 20 mm}
                                        "rate: 2e-6 N/(K*s), threshold: 40 degC}\n",
                                        ""),
                "muscle.effects[0]"}},
-             EffectBuilder(attach_ratchet)});
+             EffectBuilder(attach_ratchet),
+             ratchet_candidates()});
   kinds.add({kEffectCategory,
              "heating_convection",
              "a heat-transfer coefficient that rises with the heating input (a fan or heat "
@@ -247,7 +464,8 @@ load: {type: deflection, deflection: 20 mm}
                                        "conductance: 0.02 W/K, reference_power: 3 W}\n",
                                        ""),
                "muscle.effects[0]"}},
-             EffectBuilder(attach_heating_convection)});
+             EffectBuilder(attach_heating_convection),
+             heating_convection_candidates()});
 }
 
 }  // namespace tcpmsim

@@ -9,8 +9,8 @@ ThermalSoftening::ThermalSoftening(std::string group, ThermalSofteningParameters
 std::unique_ptr<ThermalSoftening> ThermalSoftening::from_config(const std::string& group,
                                                                 const ConfigNode& node) {
   using P = ThermalSofteningParameters;
-  node.declare(
-      {"type", "name", "reference_stiffness", "temperature_coefficient", "reference_temperature"});
+  node.declare({"type", "name", "reference_stiffness", "temperature_coefficient",
+                "reference_temperature", "stiffness_slope", "stiffness_curvature"});
   P p;
   ParameterBindings<P> bind;
   bind.quantity(node, "reference_stiffness", "N/m", ValueCheck::non_negative(), p,
@@ -19,6 +19,12 @@ std::unique_ptr<ThermalSoftening> ThermalSoftening::from_config(const std::strin
                 bind.member(&P::temperature_coefficient));
   bind.quantity(node, "reference_temperature", "K", ValueCheck::positive(), p,
                 bind.member(&P::reference_temperature));
+  if (node.has("stiffness_slope"))
+    bind.quantity(node, "stiffness_slope", "N/(m*K)", {}, p, bind.member(&P::stiffness_slope));
+  if (node.has("stiffness_curvature")) {
+    bind.quantity(node, "stiffness_curvature", "N/(m*K^2)", {}, p,
+                  bind.member(&P::stiffness_curvature));
+  }
   return std::make_unique<ThermalSoftening>(group, p, std::move(bind));
 }
 
