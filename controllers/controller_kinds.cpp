@@ -205,8 +205,10 @@ void register_controller_kinds(KindRegistry& kinds) {
                       "only drive by default)",
                       "", 40});
   kinds.add_category({kControllerCategory, "controllers", "type", "pid",
-                      "closed-loop control through an estimator (estimator: <name>; the only one "
-                      "by default); it commands that estimator's drive",
+                      "closed-loop control: the built-in PID through an estimator (estimator: "
+                      "<name>; the only one by default), commanding that estimator's drive, or "
+                      "a controller outside tcpmsim (type: external) setting a drive's power "
+                      "step by step",
                       "", 50});
   kinds.add({kDriveCategory,
              "joule",

@@ -1,5 +1,8 @@
 #include "models/load_kinds.h"
 
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -97,15 +100,42 @@ void build_imposed_force(const ConfigNode& node, const std::string& name, Scenar
 }
 
 // The deflection at which `weight` hangs still from muscles at rest: the static balance of (7.5)
-// with relaxed dashpots, m g = sum (k1 x + F_T(0) + phi_0). Attached terms must carry no force
-// at rest (a Maxwell arm carries none; check_resting_balance refuses the others).
+// with relaxed dashpots, m g = sum (k1 x + F_T(0) + phi_0), and the rest forces of their
+// attached terms (a parallel spring, a knee). Without such terms it is linear; with them the
+// balance is bracketed from the linear one and bisected to the last bit (the muscles' rest
+// force rises with the deflection). Throws std::domain_error if no deflection within 10 m
+// balances the weight.
 double static_balance(double weight, const std::vector<RestingMuscle>& muscles) {
   double net = weight, stiffness = 0.0;
+  bool attached = false;
   for (const auto& muscle : muscles) {
     net = net - muscle.thermal_force - muscle.mechanics.force_offset;
     stiffness += muscle.mechanics.k1;
+    attached = attached || !muscle.attached.empty();
   }
-  return net / stiffness;
+  const double linear = net / stiffness;
+  if (!attached) return linear;
+  const auto excess = [&](double deflection) {
+    double force = -weight;
+    for (const auto& muscle : muscles) force += muscle.force(deflection);
+    return force;
+  };
+  double low = linear, high = linear;
+  for (double step = std::max(1e-3, std::abs(linear)); excess(low) > 0.0 || excess(high) < 0.0;
+       step *= 2.0) {
+    if (step > 10.0)
+      throw std::domain_error(
+          "no deflection within 10 m balances the weight with the muscles' "
+          "attached terms at rest");
+    if (excess(low) > 0.0) low -= step;
+    if (excess(high) < 0.0) high += step;
+  }
+  for (int i = 0; i < 200; ++i) {
+    const double middle = 0.5 * (low + high);
+    if (middle <= low || middle >= high) break;
+    (excess(middle) < 0.0 ? low : high) = middle;
+  }
+  return 0.5 * (low + high);
 }
 
 void build_hanging_mass(const ConfigNode& node, const std::string& name, ScenarioBuilder& build) {
@@ -114,12 +144,16 @@ void build_hanging_mass(const ConfigNode& node, const std::string& name, Scenari
   const auto muscles = held_muscles(node, build);
   std::vector<RestingMuscle> as_built;
   for (const auto& muscle : muscles) as_built.push_back(muscle.facts.resting);
-  const auto equilibrium = [&as_built](double weight) { return static_balance(weight, as_built); };
+  const auto equilibrium = [&as_built, &node](double weight) {
+    try {
+      return static_balance(weight, as_built);
+    } catch (const std::domain_error& error) {
+      node.at("initial_deflection").fail(error.what());
+    }
+  };
   SystemBuilder& system = build.system();
   auto& mass = system.add(HangingMass::from_config(name, node, equilibrium));
   if (const ConfigNode initial = node.at("initial_deflection"); initial.is_word("equilibrium")) {
-    for (const auto& muscle : muscles)
-      check_resting_balance(initial, muscle.name, muscle.facts, "the deflection");
     system.derive(
         name + ".initial_deflection",
         [muscles, hanging = &mass](const Context& context) {
@@ -128,7 +162,7 @@ void build_hanging_mass(const ConfigNode& node, const std::string& name, Scenari
           const HangingMassParameters p = hanging->parameters_in(context);
           return static_balance(p.mass * p.gravity, resting);
         },
-        "the static balance m g = sum of k1 x + F_T + phi_0");
+        "the static balance m g = sum of k1 x + F_T + phi_0 and the attached terms at rest");
   }
   auto& cell = system.add(Sensor::from_config(name, "force", "N", node, "load_cell_resolution"));
   for (const auto& muscle : muscles) {

@@ -26,9 +26,21 @@ ThermalForm build_reduced(const ConfigNode& muscle, const std::string& name,
   build.system().export_input(name + ".heat_loss", reduced, "heat_loss");
   const std::string initial = name + ".thermal_force.initial_thermal_force";
   const bool temperature = reduced.defaults().force_per_kelvin.has_value();
-  return {reduced.defaults().initial_thermal_force,
-          [initial](const Context& context) { return context.parameter(initial); }, temperature,
-          false, temperature};
+  ThermalForm form{reduced.defaults().initial_thermal_force,
+                   [initial](const Context& context) { return context.parameter(initial); },
+                   temperature, false, temperature};
+  if (temperature) {  // T = T_amb + F_T / phi_T
+    const auto& p = reduced.defaults();
+    form.initial_temperature =
+        p.ambient_temperature + p.initial_thermal_force / *p.force_per_kelvin;
+    const std::string section = name + ".thermal_force.";
+    form.initial_temperature_in = [section](const Context& context) {
+      return context.parameter(section + "ambient_temperature") +
+             context.parameter(section + "initial_thermal_force") /
+                 context.parameter(section + "force_per_kelvin");
+    };
+  }
+  return form;
 }
 
 ThermalForm build_physical(const ConfigNode& muscle, const std::string& name,
@@ -45,16 +57,17 @@ ThermalForm build_physical(const ConfigNode& muscle, const std::string& name,
       thermal_force::physical(force.defaults().force_per_kelvin, node.initial_temperature(0.0),
                               force.defaults().reference_temperature);
   const bool given = node.defaults().initial_temperature.has_value();
-  auto in_run = [name, given](const Context& context) {
-    const double start =
-        given
-            ? context.parameter(name + ".thermal.initial_temperature")
-            : context.signal(*context.system().signal_slot(name, "ambient_temperature")).value(0.0);
+  auto start = [name, given](const Context& context) {
+    return given ? context.parameter(name + ".thermal.initial_temperature")
+                 : context.signal(*context.system().signal_slot(name, "ambient_temperature"))
+                       .value(0.0);
+  };
+  auto in_run = [name, start](const Context& context) {
     return thermal_force::physical(
-        context.parameter(name + ".thermal_force.force_per_kelvin"), start,
+        context.parameter(name + ".thermal_force.force_per_kelvin"), start(context),
         context.parameter(name + ".thermal_force.reference_temperature"));
   };
-  return {initial, in_run, true, true, true};
+  return {initial, in_run, true, true, true, start, node.initial_temperature(0.0)};
 }
 
 void build_effects(const ConfigNode& muscle, const std::string& name, MuscleFacts& facts,
@@ -128,6 +141,16 @@ void build_muscle(const ConfigNode& muscle, const std::string& name, ScenarioBui
     return RestingMuscle{sls->parameters_in(context), thermal_force(context)};
   };
   build_effects(muscle, name, facts, build);
+  // The attached terms' rest forces join the muscle's at rest.
+  facts.resting.attached = facts.rest_forces;
+  if (!facts.rest_forces_in.empty()) {
+    facts.resting_in = [base = facts.resting_in,
+                        terms = facts.rest_forces_in](const Context& context) {
+      RestingMuscle resting = base(context);
+      for (const auto& term : terms) resting.attached.push_back(term(context));
+      return resting;
+    };
+  }
   build.publish(name, facts);
 }
 

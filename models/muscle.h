@@ -2,6 +2,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "models/laws/sls.h"
 #include "sim/context.h"
@@ -36,17 +37,27 @@ struct ThermalForm {
   // balance, or by (7.1) as power lost before it heats, kappa_P (P - Q), when the reduced form
   // reports a temperature for them to depend on.
   bool takes_heat_terms = false;
+  // The muscle's temperature at t = 0 in a run, when it reports one [K].
+  std::function<double(const Context&)> initial_temperature_in = {};
+  double initial_temperature = 0.0;  // the same as built [K]
 };
 
 // A muscle at rest at the start: every dashpot relaxed (x_d = x) and F_T at its initial value.
 // What a static balance of the muscles a load holds needs.
+// The force an attached term carries with the muscle at rest at `deflection` [m] (a parallel
+// spring at the starting temperature) [N].
+using RestForce = std::function<double(double deflection)>;
+
 struct RestingMuscle {
   SlsParameters mechanics;
-  double thermal_force = 0.0;  // F_T(0) [N]
-  // (7.5) with x_d = x: k1 x + F_T + phi_0.
+  double thermal_force = 0.0;            // F_T(0) [N]
+  std::vector<RestForce> attached = {};  // the terms that carry force at rest
+  // (7.5) with x_d = x: k1 x + F_T + phi_0, and the attached terms' rest forces.
   double force(double deflection) const {
-    return sls::total_force(mechanics, sls::elastic_force(mechanics, deflection, deflection),
-                            thermal_force);
+    double total = sls::total_force(
+        mechanics, sls::elastic_force(mechanics, deflection, deflection), thermal_force);
+    for (const auto& term : attached) total += term(deflection);
+    return total;
   }
 };
 
@@ -57,9 +68,12 @@ struct MuscleFacts {
   ThermalForm thermal;                 // its thermal part, as built
   RestingMuscle resting;               // at the start, as built
   std::function<RestingMuscle(const Context&)> resting_in;  // the same in a run
-  // An attached effect carries force at rest (a parallel spring): a static balance found from
-  // the RestingMuscle alone would be wrong.
+  // An attached effect carries force at rest (a parallel spring): a balance that reads only
+  // k1, F_T and phi_0 (a joint's) would be wrong. Such an effect adds its rest force, as built
+  // and in a run, and the muscle adds them to `resting` and `resting_in`.
   bool rest_force_attached = false;
+  std::vector<RestForce> rest_forces = {};
+  std::vector<std::function<RestForce(const Context&)>> rest_forces_in = {};
 };
 
 // A load whose start `value` is its muscles' static balance (RestingMuscle) refuses, located at

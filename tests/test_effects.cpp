@@ -222,6 +222,30 @@ TEST_CASE("A stiffness slope and bend change the muscle's stiffness with tempera
   }
 }
 
+TEST_CASE("A mass hangs still at the equilibrium that includes the attached terms' rest forces") {
+  // m g = k1 x + phi_0 + F_n(x) + s(T_0) x at rest: a knee engaged below the balance and a
+  // parallel spring at the starting (ambient) temperature move it from the SLS's own
+  // (m g - phi_0) / k1 = 19.4 mm, and the muscle starts at rest there instead of settling.
+  const std::string load =
+      "load={type: hanging_mass, mass: 30 g, damping: 0.5 N*s/m, initial_deflection: equilibrium}";
+  const std::string effects =
+      "muscle.effects=[{type: nonlinear_stiffness, name: knee, stiffness: 5 N/m, "
+      "knee_deflection: 15 mm, knee_width: 2 mm}, {type: thermal_softening, name: soft, "
+      "reference_stiffness: 2 N/m, temperature_coefficient: -0.01 1/K, "
+      "reference_temperature: 20 degC}]";
+  const Trace plain = simulate(physical_muscle_yaml(), {load});
+  const Trace held = simulate(physical_muscle_yaml(), {load, effects});
+  const double weight = 0.03 * 9.80665;
+  CHECK(plain["muscle/deflection"].front() == Approx((weight - 0.1) / 10.0).epsilon(1e-12));
+  const double x0 = held["muscle/deflection"].front();
+  CHECK(x0 < plain["muscle/deflection"].front() - 2e-3);  // the terms carry part of the weight
+  const double knee = 5.0 * 2e-3 * std::log1p(std::exp((x0 - 15e-3) / 2e-3));
+  CHECK(10.0 * x0 + 0.1 + knee + 2.0 * x0 == Approx(weight).epsilon(1e-12));
+  double drift = 0.0;
+  for (const double x : held["muscle/deflection"]) drift = std::max(drift, std::abs(x - x0));
+  CHECK(drift < 1e-9);  // unheated, it stays where it started
+}
+
 TEST_CASE("Hysteresis given by its radius is a stop operator: force linear in its weight") {
   // dz/dt = k_h v - |v| z / r: on a rising branch z = k_h r - (k_h r - z0) exp(-dx / r), and
   // doubling k_h doubles z (the Prandtl-Ishlinskii operator is linear in its weights).

@@ -85,7 +85,18 @@ void attach_thermal_softening(const ConfigNode& section, const MuscleAttachment&
   system.connect(spring, "temperature", muscle.muscle + ".temperature");
   system.connect(spring, "deflection", muscle.muscle + ".deflection");
   connect_force_term(system, muscle);
+  // At rest, s(T_0) x at the muscle's starting temperature.
   muscle.facts->rest_force_attached = true;
+  const double stiffness_as_built =
+      thermal_softening::stiffness(spring.defaults(), muscle.facts->thermal.initial_temperature);
+  muscle.facts->rest_forces.push_back(
+      [stiffness_as_built](double deflection) { return stiffness_as_built * deflection; });
+  const auto starting = muscle.facts->thermal.initial_temperature_in;
+  muscle.facts->rest_forces_in.push_back([&spring, starting](const Context& context) -> RestForce {
+    const double stiffness =
+        thermal_softening::stiffness(spring.parameters_in(context), starting(context));
+    return [stiffness](double deflection) { return stiffness * deflection; };
+  });
 }
 
 void attach_hysteresis(const ConfigNode& section, const MuscleAttachment& muscle,
@@ -98,9 +109,18 @@ void attach_hysteresis(const ConfigNode& section, const MuscleAttachment& muscle
 void attach_nonlinear_stiffness(const ConfigNode& section, const MuscleAttachment& muscle,
                                 ScenarioBuilder& build) {
   SystemBuilder& system = build.system();
-  connect_deflection_term(
-      system, system.add(NonlinearStiffness::from_config(muscle.group, section)), muscle);
+  auto& knee = system.add(NonlinearStiffness::from_config(muscle.group, section));
+  connect_deflection_term(system, knee, muscle);
+  // At rest its follower sits at the deflection: F_n(x).
   muscle.facts->rest_force_attached = true;
+  const auto defaults = knee.defaults();
+  muscle.facts->rest_forces.push_back(
+      [defaults](double deflection) { return nonlinear_stiffness::force(defaults, deflection); });
+  muscle.facts->rest_forces_in.push_back([&knee](const Context& context) -> RestForce {
+    return [p = knee.parameters_in(context)](double deflection) {
+      return nonlinear_stiffness::force(p, deflection);
+    };
+  });
 }
 
 void attach_thermal_lag(const ConfigNode& section, const MuscleAttachment& muscle,
