@@ -17,20 +17,25 @@ StepSimulator::StepSimulator(Scenario scenario) : scenario_(std::move(scenario))
 StepSimulator::~StepSimulator() = default;
 
 void StepSimulator::start() {
+  // The new run is made whole before it replaces the old one: a reset that fails (parameters
+  // that do not make a run) leaves the simulator as it was.
+  auto context = std::make_unique<Context>(scenario_.make_context());
+  for (const auto& [path, value] : parameters_) context->set_parameter(path, value);
+  auto run = std::make_unique<MemoryRun>();
+  run->series = record_layout(*scenario_.system);
+  run->values.resize(run->series.size());
+  auto sink = std::make_unique<MemoryRunSink>(*run);
+  scenario_.system->prepare(*context);
+  auto integrator = std::make_unique<Integrator>(*scenario_.system, *context, scenario_.solver);
+  integrator->begin(0.0, end_time(),
+                    {scenario_.settings.output_interval, scenario_.settings.output_start}, *sink,
+                    Integrator::InstantSplit::held);
   // The integrator refers to the context and the sink: it goes first.
-  integrator_.reset();
-  context_ = std::make_unique<Context>(scenario_.make_context());
-  for (const auto& [path, value] : parameters_) context_->set_parameter(path, value);
-  run_ = std::make_unique<MemoryRun>();
-  run_->series = record_layout(*scenario_.system);
-  run_->values.resize(run_->series.size());
-  sink_ = std::make_unique<MemoryRunSink>(*run_);
+  integrator_ = std::move(integrator);
+  sink_ = std::move(sink);
+  run_ = std::move(run);
+  context_ = std::move(context);
   failed_ = false;
-  scenario_.system->prepare(*context_);
-  integrator_ = std::make_unique<Integrator>(*scenario_.system, *context_, scenario_.solver);
-  integrator_->begin(0.0, end_time(),
-                     {scenario_.settings.output_interval, scenario_.settings.output_start}, *sink_,
-                     Integrator::InstantSplit::held);
   // What each holder starts with: its output of the same name (Component::external_inputs).
   held_.clear();
   for (const ExternalInputInfo& info : inputs()) held_.push_back(output(info.name));

@@ -141,6 +141,13 @@ TEST_CASE("The step simulator refuses what a master must not do, and resets to t
                     Catch::Contains("reached its end"));
   const std::vector<double> first = simulator.record().values.front();
 
+  // Limits that pass one by one but not together: the reset refuses and the run is kept.
+  simulator.set_parameter("controller.power_limits[0]", 3.5);
+  CHECK_THROWS_WITH(simulator.reset(), Catch::Contains("power_limits"));
+  CHECK(simulator.finished());
+  CHECK(bitwise_equal(simulator.record().values.front(), first));
+  simulator.set_parameter("controller.power_limits[0]", 0.10);
+
   simulator.reset();
   CHECK(simulator.time() == 0.0);
   simulator.set_input("controller.power_command", 2.0);
