@@ -238,56 +238,55 @@ CandidateDeclaration hysteresis_candidates() {
   return {{family}, ""};
 }
 
+// A kind discover tries as one family of one form, its keys in one section.
+CandidateDeclaration one_form(CandidateFamily family, std::string member,
+                              std::vector<CandidateKey> keys) {
+  family.members.push_back({std::move(member), 1, {std::move(keys)}, {}, {}});
+  return {{std::move(family)}, ""};
+}
+
 CandidateDeclaration free_convection_candidates() {
-  return {{{"nonlinear_convection",
-            2,
-            "heat loss growing faster than linearly with the temperature rise",
-            "residual against temperature; against power at steady heating",
-            {CandidateNeed::temperature},
-            {{"G dT_ref (dT/dT_ref)^n, free exponent",
-              1,
-              {{free_key("conductance", "W/K", fixed_value(0.0), fixed_value(0.0),
-                         scaled(3.0, S::conductance)),
-                fixed_key("reference_difference", "K", fixed_value(50.0)),
-                free_key("exponent", "1", fixed_value(1.25), fixed_value(1.0), fixed_value(2.0))}},
-              {},
-              {}}}}},
-          ""};
+  return one_form(
+      {"nonlinear_convection",
+       2,
+       "heat loss growing faster than linearly with the temperature rise",
+       "residual against temperature; against power at steady heating",
+       {CandidateNeed::temperature},
+       {}},
+      "G dT_ref (dT/dT_ref)^n, free exponent",
+      {free_key("conductance", "W/K", fixed_value(0.0), fixed_value(0.0),
+                scaled(3.0, S::conductance)),
+       fixed_key("reference_difference", "K", fixed_value(50.0)),
+       free_key("exponent", "1", fixed_value(1.25), fixed_value(1.0), fixed_value(2.0))});
 }
 
 CandidateDeclaration heating_lag_candidates() {
-  return {
-      {{"thermal_lag",
-        3,
-        "the heat reaches the polymer late (heater wire, coating)",
-        "residual cross-correlated with power at short lags",
-        {CandidateNeed::temperature},
-        {{"a share of the power through a first-order lag",
-          1,
-          {{free_key("share", "1", fixed_value(0.0), fixed_value(0.0), fixed_value(1.0)),
-            free_key("time_constant", "s", fixed_value(2.0), fixed_value(0.1), fixed_value(30.0))}},
-          {},
-          {}}}}},
-      ""};
+  return one_form(
+      {"thermal_lag",
+       3,
+       "the heat reaches the polymer late (heater wire, coating)",
+       "residual cross-correlated with power at short lags",
+       {CandidateNeed::temperature},
+       {}},
+      "a share of the power through a first-order lag",
+      {free_key("share", "1", fixed_value(0.0), fixed_value(0.0), fixed_value(1.0)),
+       free_key("time_constant", "s", fixed_value(2.0), fixed_value(0.1), fixed_value(30.0))});
 }
 
 CandidateDeclaration nonlinear_stiffness_candidates() {
-  return {
-      {{"nonlinear_stiffness",
-        4,
-        "stiffness that depends on deflection (coil contact, preload knee)",
-        "residual against deflection",
-        {CandidateNeed::deflection},
-        {{"a softplus knee, free sharpness",
-          1,
-          {{free_key("stiffness", "N/m", fixed_value(0.0), scaled(-0.9, S::k1), scaled(5.0, S::k1)),
-            free_key("knee_deflection", "m", scaled(0.5, S::deflection_sum),
-                     scaled(1.0, S::deflection_low), scaled(1.0, S::deflection_high)),
-            free_key("knee_width", "m", scaled(0.1, S::range), scaled(0.01, S::range),
-                     scaled(0.5, S::range))}},
-          {},
-          {}}}}},
-      ""};
+  return one_form(
+      {"nonlinear_stiffness",
+       4,
+       "stiffness that depends on deflection (coil contact, preload knee)",
+       "residual against deflection",
+       {CandidateNeed::deflection},
+       {}},
+      "a softplus knee, free sharpness",
+      {free_key("stiffness", "N/m", fixed_value(0.0), scaled(-0.9, S::k1), scaled(5.0, S::k1)),
+       free_key("knee_deflection", "m", scaled(0.5, S::deflection_sum),
+                scaled(1.0, S::deflection_low), scaled(1.0, S::deflection_high)),
+       free_key("knee_width", "m", scaled(0.1, S::range), scaled(0.01, S::range),
+                scaled(0.5, S::range))});
 }
 
 // The thermal_softening keys of a stiffness that changes with the temperature rise dT from the
@@ -321,38 +320,32 @@ CandidateDeclaration thermal_softening_candidates() {
 
 CandidateDeclaration ratchet_candidates() {
   // An irreversible loss of force above a threshold temperature, up to k1 x range per 1000 K s.
-  return {{{"ratchet",
-            8,
-            "the rest length creeps irreversibly with each heating cycle",
-            "drift that steps down with each heating; residual against the heat received",
-            {CandidateNeed::temperature},
-            {{"dF/dt = -g max(0, T - T_th), kept on cooling",
-              1,
-              {{free_key("rate", "N/(K*s)", fixed_value(0.0), fixed_value(0.0),
-                         scaled(1.0, S::k1_range, 0.0, 1000.0)),
-                free_key("threshold", "K", scaled(1.0, S::ambient, 10.0), scaled(1.0, S::ambient),
-                         scaled(1.0, S::ambient, 100.0))}},
-              {},
-              {}}}}},
-          ""};
+  return one_form({"ratchet",
+                   8,
+                   "the rest length creeps irreversibly with each heating cycle",
+                   "drift that steps down with each heating; residual against the heat received",
+                   {CandidateNeed::temperature},
+                   {}},
+                  "dF/dt = -g max(0, T - T_th), kept on cooling",
+                  {free_key("rate", "N/(K*s)", fixed_value(0.0), fixed_value(0.0),
+                            scaled(1.0, S::k1_range, 0.0, 1000.0)),
+                   free_key("threshold", "K", scaled(1.0, S::ambient, 10.0),
+                            scaled(1.0, S::ambient), scaled(1.0, S::ambient, 100.0))});
 }
 
 CandidateDeclaration heating_convection_candidates() {
-  return {{{"heating_dependent_convection",
-            9,
-            "the heat-transfer coefficient rises while the heating runs (a fan or heat gun)",
-            "residual against power times the temperature rise",
-            {CandidateNeed::temperature, CandidateNeed::power},
-            {{"Q = G_P (P_b / P_peak) (T - T_amb), P_b lagging P",
-              1,
-              {{free_key("conductance", "W/K", fixed_value(0.0), fixed_value(0.0),
-                         scaled(3.0, S::conductance)),
-                fixed_key("reference_power", "W", scaled(1.0, S::power_peak)),
-                free_key("time_constant", "s", fixed_value(1.0), fixed_value(0.05),
-                         fixed_value(60.0))}},
-              {},
-              {}}}}},
-          ""};
+  return one_form(
+      {"heating_dependent_convection",
+       9,
+       "the heat-transfer coefficient rises while the heating runs (a fan or heat gun)",
+       "residual against power times the temperature rise",
+       {CandidateNeed::temperature, CandidateNeed::power},
+       {}},
+      "Q = G_P (P_b / P_peak) (T - T_amb), P_b lagging P",
+      {free_key("conductance", "W/K", fixed_value(0.0), fixed_value(0.0),
+                scaled(3.0, S::conductance)),
+       fixed_key("reference_power", "W", scaled(1.0, S::power_peak)),
+       free_key("time_constant", "s", fixed_value(1.0), fixed_value(0.05), fixed_value(60.0))});
 }
 
 CandidateDeclaration thermal_lag_exclusion() {
