@@ -263,19 +263,6 @@ void choose_members(std::vector<CandidateOutcome>& outcomes) {
   }
 }
 
-// The base model is at the noise floor when every output's validation residual is white
-// (Ljung-Box p >= 0.01) and its RMSE within the margin above the floor.
-std::vector<bool> at_noise_floor(const FitResult& base, const ResidualDiagnostics& diagnostics,
-                                 const DiscoverSetup& setup) {
-  std::vector<bool> at_noise;
-  for (std::size_t k = 0; k < setup.floor.size(); ++k) {
-    at_noise.push_back(base.validation.rmse[k] <=
-                           (1.0 + setup.request.floor_margin) * setup.floor[k] &&
-                       diagnostics.outputs[k].whiteness.p_value >= 0.01);
-  }
-  return at_noise;
-}
-
 }  // namespace
 
 const char* verdict_kind_name(VerdictKind kind) {
@@ -288,6 +275,18 @@ const char* verdict_kind_name(VerdictKind kind) {
       break;
   }
   return "unexplained";
+}
+
+std::vector<bool> at_noise_floor(const std::vector<double>& rmse, const std::vector<double>& floor,
+                                 double margin) {
+  std::vector<bool> at_noise;
+  for (std::size_t k = 0; k < floor.size(); ++k)
+    at_noise.push_back(rmse[k] <= (1.0 + margin) * floor[k]);
+  return at_noise;
+}
+
+double structured_rms(double rmse, double floor) {
+  return std::sqrt(std::max(0.0, rmse * rmse - floor * floor));
 }
 
 double above_noise_gap_closed(const std::vector<double>& base_rmse,
@@ -403,7 +402,8 @@ Discovery discover(const DiscoverSetup& setup) {
           signature_evidence(outcome.name, discovery.diagnostics, baseline.spec.problem);
   }
   discovery.candidates = std::move(outcomes);
-  discovery.at_noise = at_noise_floor(discovery.base, discovery.diagnostics, setup);
+  discovery.at_noise =
+      at_noise_floor(discovery.base.validation.rmse, setup.floor, setup.request.floor_margin);
   const bool named = !discovery.candidates.empty() &&
                      discovery.candidates.front().status == "fitted" &&
                      discovery.candidates.front().significant;

@@ -66,8 +66,8 @@ struct Discovery {
   std::vector<SkippedCandidate> skipped;
   VerdictKind kind = VerdictKind::none;
   std::string verdict;  // an effect's name, "none" or "unexplained"
-  // Whether each output's base validation residual is at the noise floor (white, RMSE within
-  // the margin), and the share of the above-noise gap, (rmse_base - rmse_aug) /
+  // Whether each output's base validation RMSE is at the noise floor (within the margin; see
+  // at_noise_floor), and the share of the above-noise gap, (rmse_base - rmse_aug) /
   // (rmse_base - floor) with outputs combined over their floors, that the verdict's effect
   // closes (0 without one; NaN when the base is already at the floor).
   std::vector<bool> at_noise;
@@ -84,6 +84,16 @@ Discovery discover(const DiscoverSetup& setup);
 double above_noise_gap_closed(const std::vector<double>& base_rmse,
                               const std::vector<double>& augmented_rmse,
                               const std::vector<double>& floor);
+
+// Whether each output's base validation RMSE is at its noise floor: rmse <= (1 + margin) floor.
+// Whiteness is not required. A model is never exactly the data's law, and with thousands of
+// samples Ljung-Box finds a structured part of a few percent of the noise variance; the margin is
+// the size the user asks discover to explain, and the report names a smaller, non-white rest.
+std::vector<bool> at_noise_floor(const std::vector<double>& rmse, const std::vector<double>& floor,
+                                 double margin);
+
+// The RMS of a residual's part above white noise of the floor: sqrt(max(0, rmse^2 - floor^2)).
+double structured_rms(double rmse, double floor);
 
 // The combined validation RMSE of several outputs, each over its noise: sqrt(mean (rmse/noise)^2).
 double combined_rmse(const std::vector<double>& rmse, const std::vector<double>& noise);

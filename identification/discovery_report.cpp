@@ -1,5 +1,6 @@
 #include "identification/discovery_report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -24,6 +25,11 @@ const FitProblem& problem_of(const Discovery& discovery) {
 const CandidateOutcome* verdict_of(const Discovery& discovery) {
   if (discovery.kind != VerdictKind::effect) return nullptr;
   return &discovery.candidates.front();
+}
+
+// Whether an output's base validation residual passes Ljung-Box at the 1 % level.
+bool residual_white(const Discovery& discovery, std::size_t output) {
+  return discovery.diagnostics.outputs[output].whiteness.p_value >= 0.01;
 }
 
 nlohmann::json rmse_json(const Discovery& discovery, const std::vector<double>& rmse) {
@@ -79,6 +85,27 @@ FitSpec spec_for_yaml(const FitSpec& spec, const std::string& data_file) {
 
 std::string text(double value, int digits = 3) {
   return number_text(value, digits);
+}
+
+// Under a verdict of none: the outputs whose residual is not white, with the size of their
+// structured part and what it follows, so that none is not read as "the residual is noise".
+void write_structured_rest(std::ostream& out, const Discovery& discovery) {
+  const auto& outputs = problem_of(discovery).outputs;
+  for (std::size_t k = 0; k < outputs.size(); ++k) {
+    if (residual_white(discovery, k)) continue;
+    const double floor = discovery.setup.floor[k];
+    const double rest = structured_rms(discovery.base.validation.rmse[k], floor);
+    out << "\nThe " << outputs[k].channel << " residual is not white (Ljung-Box p = "
+        << text(discovery.diagnostics.outputs[k].whiteness.p_value, 2)
+        << "): a structured part of about " << text(rest, 3) << " " << outputs[k].unit << " RMS ("
+        << text(100 * rest / floor, 3)
+        << " % of the floor) remains that no candidate explains significantly, below the margin "
+           "(--floor-margin) discover is asked to explain. It follows, strongest first: ";
+    const auto ranked = ranked_signatures(discovery.diagnostics, k);
+    for (std::size_t i = 0; i < std::min<std::size_t>(ranked.size(), 3); ++i)
+      out << (i ? "; " : "") << ranked[i].what << " (" << text(ranked[i].strength, 2) << "x)";
+    out << ".\n";
+  }
 }
 
 }  // namespace
@@ -147,11 +174,16 @@ std::string discovery_json(const Discovery& discovery) {
   json["noise_floor"] = rmse_json(discovery, discovery.setup.floor);
   json["noise_floor_source"] = nlohmann::json::object();
   json["at_noise_floor"] = nlohmann::json::object();
+  json["residual_white"] = nlohmann::json::object();
+  json["structured_rms"] = nlohmann::json::object();
   for (std::size_t k = 0; k < discovery.setup.floor.size(); ++k) {
     const std::string& channel = problem_of(discovery).outputs[k].channel;
     json["noise_floor_source"][channel] =
         discovery.setup.floor_given[k] ? "given (--noise)" : "estimated from the data";
     json["at_noise_floor"][channel] = static_cast<bool>(discovery.at_noise[k]);
+    json["residual_white"][channel] = residual_white(discovery, k);
+    json["structured_rms"][channel] =
+        structured_rms(discovery.base.validation.rmse[k], discovery.setup.floor[k]);
   }
   json["spikes_replaced"] = nlohmann::json::object();
   for (std::size_t k = 0; k < discovery.setup.cleaned.size(); ++k)
@@ -186,7 +218,8 @@ std::string discovery_summary(const Discovery& discovery) {
   for (std::size_t k = 0; k < outputs.size(); ++k)
     out << " " << outputs[k].channel << " " << text(discovery.setup.floor[k], 4) << " "
         << outputs[k].unit << (discovery.setup.floor_given[k] ? " (given)" : " (from the data)")
-        << (discovery.at_noise[k] ? ", base at it" : ", base above it");
+        << (discovery.at_noise[k] ? ", base at it" : ", base above it")
+        << (residual_white(discovery, k) ? "" : " (residual not white)");
   out << "\n  " << std::left << std::setw(34) << "effect" << std::setw(12) << "delta BIC"
       << std::setw(12) << "gap shrink" << std::setw(13) << "signature z"
       << "significant\n";
@@ -243,7 +276,7 @@ std::string discovery_report(const Discovery& discovery) {
         << " " << problem.outputs[k].unit << " (identification "
         << text(discovery.base.identification.rmse[k], 4)
         << "); Ljung-Box p = " << text(output.whiteness.p_value, 2)
-        << (output.whiteness.p_value < 0.01 ? " (not white)" : " (white)")
+        << (residual_white(discovery, k) ? " (white)" : " (not white)")
         << "; drift t = " << text(output.drift.t_statistic, 2) << "; power share by band";
     for (std::size_t b = 0; b < discovery.diagnostics.bands.size(); ++b)
       out << (b ? ", " : " ") << text(discovery.diagnostics.bands[b].first, 2) << "-"
@@ -306,10 +339,11 @@ std::string discovery_report(const Discovery& discovery) {
     out << " The effect closes " << text(100 * discovery.gap_closed, 3)
         << " % of the gap above the noise floor.\n";
   } else if (discovery.kind == VerdictKind::none) {
-    out << "**none**: the base model fits to the noise floor (every output's validation residual "
-           "is white and within "
+    out << "**none**: the base model fits to the noise floor (every output's validation RMSE is "
+           "within "
         << text(100 * request.floor_margin) << " % of its floor), and no candidate improves it "
         << "significantly.\n";
+    write_structured_rest(out, discovery);
   } else {
     out << "**unexplained**: the base model misses by more than the noise, and no candidate of "
            "the catalogue explains it. Do not read this as a complete model.\n";

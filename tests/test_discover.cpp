@@ -80,6 +80,24 @@ TEST_CASE("BIC is sum_k n ln(RSS_k / n) + p ln N for a fit with one unknown vari
         Approx(std::sqrt((4.0 + 0.25) / 2)).epsilon(1e-14));
 }
 
+TEST_CASE("The base model is at the noise floor by the size of its residual, not its whiteness") {
+  // Data from another implementation of the same laws at 1 mN of noise (the independent
+  // matrix's null case): RMSE 1.0405 mN over a floor of 1.0143 mN, Ljung-Box p = 2e-5. The
+  // residual is structured, but its structured part is a fifth of the noise: at the floor.
+  CHECK(fit::at_noise_floor({1.0405e-3, 5.44e-4}, {1.0143e-3, 4.93e-4}, 0.25) ==
+        std::vector<bool>{true, true});
+  CHECK(fit::structured_rms(1.0405e-3, 1.0143e-3) ==
+        Approx(std::sqrt(1.0405e-3 * 1.0405e-3 - 1.0143e-3 * 1.0143e-3)).epsilon(1e-12));
+  CHECK(fit::structured_rms(1.0405e-3, 1.0143e-3) == Approx(0.232e-3).epsilon(0.01));
+  // Issue 28's hysteresis case: 8.9 mN over a 2 mN floor is far above it, on one output
+  // enough to stop the verdict none.
+  CHECK(fit::at_noise_floor({8.91e-3, 5e-4}, {2e-3, 5e-4}, 0.25) == std::vector<bool>{false, true});
+  // The margin is the bound; a residual below the floor has no structured part.
+  CHECK(fit::at_noise_floor({1.2499e-3}, {1e-3}, 0.25) == std::vector<bool>{true});
+  CHECK(fit::at_noise_floor({1.2501e-3}, {1e-3}, 0.25) == std::vector<bool>{false});
+  CHECK(fit::structured_rms(0.9e-3, 1e-3) == 0.0);
+}
+
 TEST_CASE("Spikes are replaced; a noisy smooth signal and a noisy staircase are left alone") {
   const std::size_t n = 10000;
   RandomStream stream(3, "hampel");
