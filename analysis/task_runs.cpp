@@ -37,22 +37,30 @@ void add_to(Context& context, const std::string& path, double offset) {
 void analyse_task(const MemoryRecord& record, const Signal& reference,
                   const std::string& reference_channel, const std::string& truth,
                   const std::string& estimate, TaskAnalysis& analysis) {
+  analyse_task(record.time, record[reference_channel], record[truth],
+               estimate.empty() ? std::span<const double>() : std::span(record[estimate]),
+               reference, analysis);
+}
+
+void analyse_task(std::span<const double> time, std::span<const double> reference_samples,
+                  std::span<const double> truth, std::span<const double> estimate,
+                  const Signal& reference, TaskAnalysis& analysis) {
   const double start = reference.next_breakpoint_after(0.0);
   const auto first_after = static_cast<std::size_t>(
-      std::lower_bound(record.time.begin(), record.time.end(), start - 1e-9) - record.time.begin());
-  std::vector<double> time, r, y;
-  for (std::size_t k = first_after > 0 ? first_after - 1 : 0; k < record.time.size(); ++k) {
-    time.push_back(record.time[k]);
-    r.push_back(record[reference_channel][k]);
-    y.push_back(record[truth][k]);
-    if (!estimate.empty() && record.time[k] >= start - 1e-9)
-      analysis.estimation_errors.push_back(record[estimate][k] - y.back());
+      std::lower_bound(time.begin(), time.end(), start - 1e-9) - time.begin());
+  std::vector<double> t, r, y;
+  for (std::size_t k = first_after > 0 ? first_after - 1 : 0; k < time.size(); ++k) {
+    t.push_back(time[k]);
+    r.push_back(reference_samples[k]);
+    y.push_back(truth[k]);
+    if (!estimate.empty() && time[k] >= start - 1e-9)
+      analysis.estimation_errors.push_back(estimate[k] - y.back());
   }
   if (const auto* sweep = dynamic_cast<const SteppedSineSignal*>(&reference)) {
-    analysis.response = sweep_frequency_response(time, r, y, sweep->schedule());
+    analysis.response = sweep_frequency_response(t, r, y, sweep->schedule());
     analysis.bandwidth = bandwidth_3db(analysis.response);
   } else {
-    analysis.rises = step_rise_times(time, r, y);
+    analysis.rises = step_rise_times(t, r, y);
   }
 }
 

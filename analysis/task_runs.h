@@ -1,5 +1,6 @@
 #pragma once
 
+#include <span>
 #include <string>
 
 #include "analysis/control_task_runner.h"
@@ -38,5 +39,10 @@ void add_to(Context& context, const std::string& path, double offset);
 void analyse_task(const MemoryRecord& record, const Signal& reference,
                   const std::string& reference_channel, const std::string& truth,
                   const std::string& estimate, TaskAnalysis& analysis);
+// The same on sampled series (t, r as the controller used it, the truth y and the estimate y^,
+// empty for none), as a run closed outside tcpmsim (tcpmsim.control_task) records them.
+void analyse_task(std::span<const double> time, std::span<const double> reference_samples,
+                  std::span<const double> truth, std::span<const double> estimate,
+                  const Signal& reference, TaskAnalysis& analysis);
 
 }  // namespace tcpmsim

@@ -123,7 +123,7 @@ void build_external_controller(const ConfigNode& node, const std::string& name,
     node.fail("an external controller commands a Muscle Drive's power (drive.model: muscle_drive)");
   check_takes_command(*facts);
   SystemBuilder& system = build.system();
-  system.add(ExternalController::from_config(name, node));
+  system.add(ExternalController::from_config(name, node, build.signals()));
   system.connect(drive.name + ".power_command", name + ".power_command");
 }
 
@@ -172,7 +172,8 @@ std::string external_controller_scenario() {
   text = text.substr(0, text.find("controller:\n"));
   return text +
          "controller: {type: external, drive: drive, power_limits: [0.10 W, 3.12 W], "
-         "initial_power: 1 W}\nload: {type: deflection, deflection: 20 mm}\n";
+         "initial_power: 1 W, target: force, reference: 0.4 N}\nload: {type: deflection, "
+         "deflection: 20 mm}\n";
 }
 
 }  // namespace
@@ -241,7 +242,8 @@ void register_controller_kinds(KindRegistry& kinds) {
              "external",
              "the loop closed outside the system: a Python controller (tcpmsim.Simulator), an "
              "FMU's master or a C++ loop sets the drive's power each step, within power_limits, "
-             "where the PID would act",
+             "where the PID would act; it reports the task's reference (target, reference: "
+             "optional, both or neither) as output reference",
              {{external_controller_scenario(), "controller"}},
              InstanceBuilder(build_external_controller)});
   register_joint_angle_controller(kinds);

@@ -7,6 +7,8 @@
 #include "sim/component.h"
 #include "sim/config/config_node.h"
 #include "sim/parameter_bindings.h"
+#include "sim/signal.h"
+#include "sim/signal_reading.h"
 
 namespace tcpmsim {
 
@@ -22,20 +24,31 @@ struct ExternalControllerSettings {
 // within power_limits; its master sets it after the instant's instruments and estimators have
 // acted and before the drive latches it, so a command set at t_k is the drive's from t_k on, as
 // the PID's (7.7)-(7.9) is.
+//
+// It may carry the task's reference (target: force | deflection, reference: a signal in N or m),
+// which it only reports: output "reference" is r(t_k) as the PID samples it (right of a step at
+// t_k), latched at each instant t_k and held until the next, so the master reads the task from
+// the outputs and the record is the built-in controller's (a step at the run's end is never in
+// force), analysed as it is (tcpmsim.control_task, tcpmsim analyze --reference).
 class ExternalController final : public Component {
  public:
-  enum Output { kPowerCommand };
+  enum Output { kPowerCommand, kReference };
 
   ExternalController(std::string group, ExternalControllerSettings settings,
-                     ParameterBindings<ExternalControllerSettings> bindings);
+                     ParameterBindings<ExternalControllerSettings> bindings,
+                     std::unique_ptr<Signal> reference = nullptr, std::string reference_unit = "");
   static std::unique_ptr<ExternalController> from_config(const std::string& group,
-                                                         const ConfigNode& node);
+                                                         const ConfigNode& node,
+                                                         const SignalContext& signals);
 
   std::vector<OutputDeclaration> outputs() const override;
   std::vector<ParameterDeclaration> parameters() const override;
+  std::vector<SignalDeclaration> signals() const override;
   std::unique_ptr<RunState> create_run_state(const RunSetup& setup) const override;
   std::string check_parameters(const RunSetup& setup) const override;
   void compute_outputs(const Evaluation& evaluation) const override;
+  void sense(const Evaluation& evaluation) const override;
+  void at_breakpoint(const Evaluation& evaluation) const override;
   SamplingStage sampling_stage() const override { return SamplingStage::controller; }
   bool acts_discretely() const override { return true; }
   std::vector<ExternalInputDeclaration> external_inputs() const override;
@@ -47,6 +60,8 @@ class ExternalController final : public Component {
   struct Run;
   ExternalControllerSettings defaults_;
   ParameterBindings<ExternalControllerSettings> bindings_;
+  std::unique_ptr<Signal> reference_;  // null without a task
+  std::string reference_unit_;
 };
 
 }  // namespace tcpmsim

@@ -16,7 +16,6 @@ from tcpmsim.env import MuscleEnv
 
 SETTINGS = {"scenario.duration": "100 s"}
 builtin = tcpmsim.Scenario.from_yaml("configs/ch7_control/force_steps.yaml", set=SETTINGS).run()
-reference = dict(zip(builtin["time"], builtin["controller/reference"]))  # the same steps
 
 simulator = tcpmsim.Simulator(
     tcpmsim.Scenario.from_yaml("configs/ch7_control/external_force.yaml", set=SETTINGS))
@@ -39,10 +38,12 @@ def pi(r, estimate):
 
 outputs = simulator.outputs()
 while not simulator.finished:
-    power = pi(reference[simulator.time], outputs["estimator/force"])
+    # The task's reference as the external controller reports it: force_steps.yaml's steps.
+    power = pi(outputs["controller/reference"], outputs["estimator/force"])
     outputs = simulator.step({"controller.power_command": power}, dt)
 result = simulator.result()
-assert np.array_equal(result["muscle/force"], builtin["muscle/force"]), "not the built-in run"
+for channel in ("muscle/force", "controller/power_command", "controller/reference"):
+    assert np.array_equal(result[channel], builtin[channel]), f"{channel}: not the built-in run"
 error = result["muscle/force"] - builtin["controller/reference"]
 print(f"PI in Python: {len(result['time'])} samples, the built-in PID's run bit for bit; "
       f"force tracking RMSE after 40 s {np.sqrt(np.mean(error[result['time'] >= 40] ** 2)) * 1e3:.2f} mN")

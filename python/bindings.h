@@ -65,6 +65,7 @@ void bind_errors(pybind11::module_& module);
 void bind_scenario(pybind11::module_& module);
 void bind_result(pybind11::module_& module);
 void bind_analysis(pybind11::module_& module);
+void bind_control_task(pybind11::module_& module);
 void bind_simulator(pybind11::module_& module);
 
 }  // namespace tcpmsim::python

@@ -32,5 +32,6 @@ PYBIND11_MODULE(_core, module) {
   tcpmsim::python::bind_scenario(module);
   tcpmsim::python::bind_result(module);
   tcpmsim::python::bind_analysis(module);
+  tcpmsim::python::bind_control_task(module);
   tcpmsim::python::bind_simulator(module);
 }

@@ -27,13 +27,18 @@ std::string file_text(const std::string& path) {
 }
 
 // configs/ch7_control/force_steps.yaml with its PID replaced by an external controller with the
-// same power limits, the rest (plant, drive, estimator, seed, solver) as it is.
+// same power limits and task (target and reference), the rest (plant, drive, estimator, seed,
+// solver) as it is.
 std::string external_force_steps(const std::string& duration) {
   std::string text = file_text(source_path("configs/ch7_control/force_steps.yaml"));
   const auto begin = text.find("controller:");
   const auto end = text.find("\nload:");
-  text = text.substr(0, begin) + "controller: {type: external, power_limits: [0.10 W, 3.12 W]}\n" +
-         text.substr(end + 1);
+  const auto reference_begin = text.find("  reference:", begin);
+  const std::string reference =
+      text.substr(reference_begin, text.find('\n', reference_begin) + 1 - reference_begin);
+  text = text.substr(0, begin) +
+         "controller:\n  type: external\n  power_limits: [0.10 W, 3.12 W]\n  target: force\n" +
+         reference + text.substr(end + 1);
   return replaced(text, "duration: 180 s", "duration: " + duration);
 }
 
@@ -77,18 +82,15 @@ TEST_CASE(
   CHECK(simulator.inputs()[0].unit == "W");
   CHECK(simulator.input_range("controller.power_command") == std::pair{0.10, 3.12});
 
-  const auto slot = builtin.system->signal_slot("controller", "reference");
-  REQUIRE(slot);
-  const Signal& reference = *builtin.system->signal_slots()[static_cast<std::size_t>(*slot)].signal;
   const double period = 1.0 / 20.0;  // the PWM's
   TestPi pi{540.0, 1.0, period, 0.10, 3.12};
   long samples = 0;
   for (long k = 0; k * period <= simulator.end_time(); ++k) {
     simulator.advance_to(static_cast<double>(k) * period);
     if (simulator.finished()) break;
-    const double t = simulator.time();
+    // The task's reference as the external controller reports it: r(t_k), as the PID samples it.
     const double power =
-        pi.command(reference.value(t + time_margin(t)), simulator.output("estimator.force"));
+        pi.command(simulator.output("controller.reference"), simulator.output("estimator.force"));
     simulator.set_input("controller.power_command", power);
     ++samples;
   }
@@ -99,7 +101,7 @@ TEST_CASE(
   REQUIRE(stepped.time == expected.time);
 
   // Every series both records have: the plant, the drive, the estimator; the controller's
-  // command. The PID's own (demand, reference) the external controller does not have.
+  // command and reference. The PID's own demand the external controller does not have.
   int compared = 0;
   for (std::size_t s = 0; s < stepped.series.size(); ++s) {
     const RecordSeries& series = stepped.series[s];
@@ -113,6 +115,7 @@ TEST_CASE(
   }
   CHECK(compared >= 20);
   CHECK(expected.find("controller/power_command"));
+  CHECK(stepped.find("controller/reference"));
   CHECK(stepped.statistics.steps == expected.statistics.steps);
 }
 
@@ -173,4 +176,29 @@ TEST_CASE(
   CHECK(whole == directory + "/whole.h5");
   CHECK(simulator.record().time.back() == 1.0);
   CHECK(simulator.record().time.size() == 21);  // 20 Hz output
+}
+
+TEST_CASE("An external controller's task is a target with its reference, each refused alone") {
+  const std::string text = external_force_steps("1 s");
+  auto error_of = [](const std::string& yaml) {
+    try {
+      scenario_from_text(yaml);
+    } catch (const std::exception& error) {
+      return std::string(error.what());
+    }
+    return std::string("no error");
+  };
+  CHECK_THAT(error_of(replaced(text, "  target: force\n", "")),
+             Catch::Contains("controller.reference: a reference needs its target"));
+  const auto reference = text.find("  reference:");
+  const std::string without_reference =
+      text.substr(0, reference) + text.substr(text.find('\n', reference) + 1);
+  CHECK_THAT(error_of(without_reference),
+             Catch::Contains("controller: a target needs the task's reference"));
+  CHECK_THAT(error_of(replaced(text, "  target: force\n", "  target: deflection\n")),
+             Catch::Contains("controller.reference"));  // N where a length is expected
+  // With the task, the reference is an output the master reads: the lead-in at the middle of
+  // the range, 0.45 N, before the first step at 40 s.
+  StepSimulator simulator(scenario_from_text(text));
+  CHECK(simulator.output("controller.reference") == Approx(0.45).epsilon(1e-12));
 }

@@ -12,12 +12,12 @@ The module is thin: every model, unit and error comes from the C++ engine (tcpms
 
 from ._core import (ConfigError, ParameterError, Result, Scenario, Simulator, SolverFailure,
                     UnitError, UsageError,
-                    __version__, analyze, git_commit, run_many)
+                    __version__, analyze, control_task, git_commit, run_many)
 
 __all__ = ["ConfigError", "ParameterError", "Result", "Scenario", "Simulator", "SolverFailure",
            "UnitError",
            "UsageError",
-           "__version__", "analyze", "git_commit", "run_many", "sweep"]
+           "__version__", "analyze", "control_task", "git_commit", "run_many", "sweep"]
 
 
 def sweep(scenario, path, values, jobs=0):

@@ -1,7 +1,7 @@
 """A Gymnasium-style environment: one muscle, the heating power as the action.
 
     from tcpmsim.env import MuscleEnv
-    env = MuscleEnv("configs/ch7_control/external_force.yaml", target="force", reference=0.45)
+    env = MuscleEnv("configs/ch7_control/external_force.yaml", target="force")
     observation, info = env.reset(seed=1)
     while True:
         observation, reward, terminated, truncated, info = env.step(env.action_space.sample())
@@ -20,8 +20,10 @@ thesis' PID samples at), within the controller's power_limits. The observation i
     observe="estimate":  [self-sensed target (the ch.7 estimator), reference, last power]
     observe="state":     [true target, reference, last power, temperature, deflection, force]
 
-in SI. The reward is minus the absolute tracking error of the true target, in units of
-`error_scale`. An episode ends (truncated) at the scenario's duration.
+in SI. The reference is the task the scenario's external controller reports
+(controller/reference: its target and reference keys) unless `reference` gives one (a number or
+a function of time in SI). The reward is minus the absolute tracking error of the true target,
+in units of `error_scale`. An episode ends (truncated) at the scenario's duration.
 """
 
 import math
@@ -67,7 +69,7 @@ class MuscleEnv:
     metadata = {"render_modes": []}
     render_mode = None
 
-    def __init__(self, scenario, target="force", reference=0.45, observe="estimate", dt=None,
+    def __init__(self, scenario, target="force", reference=None, observe="estimate", dt=None,
                  error_scale=None, input_name=None):
         if target not in _TARGETS:
             raise ValueError(f"target: expected one of {sorted(_TARGETS)}, got {target!r}")
@@ -86,7 +88,12 @@ class MuscleEnv:
         self.input_name = input_name
         self.target = target
         self.observe = observe
-        self.reference = reference if callable(reference) else (lambda t, r=float(reference): r)
+        self._reference_key = None
+        if reference is None:
+            self._reference_key = self._scenario_reference(input_name, target)
+        else:
+            self.reference = (reference if callable(reference) else
+                              (lambda t, r=float(reference): r))
         if dt is None:
             frequency = self.simulator.parameter("drive.pwm_frequency")
             dt = 1.0 / frequency
@@ -138,6 +145,25 @@ class MuscleEnv:
         pass
 
     # --------------------------------------------------------------------------------------------
+    def _scenario_reference(self, input_name, target):
+        """The reference the external controller setting `input_name` reports, checked to be in
+        the target's unit."""
+        key = input_name.split(".")[0] + "/reference"
+        units = self.simulator.result().units
+        if key not in units:
+            raise ValueError(f"reference: the scenario's controller reports no task ({key}: "
+                             "give it target and reference keys), so give one here")
+        if units[key] != _TARGETS[target][2]:
+            raise ValueError(f"target: {target!r} is in {_TARGETS[target][2]}, but the scenario's "
+                             f"task ({key}) is in {units[key]}")
+        return key
+
+    def reference(self, t):
+        """The reference at `t`, the time reached: the scenario's task as its controller
+        reports it (replaced when a reference is given)."""
+        del t
+        return self._outputs[self._reference_key]
+
     def _observation(self):
         t = self.simulator.time
         values = [self._outputs[self._estimate_key if self.observe == "estimate" else

@@ -5,6 +5,7 @@ tree as the working directory."""
 
 import math
 import os
+import subprocess
 import tempfile
 import unittest
 
@@ -37,20 +38,17 @@ class SimulatorTest(unittest.TestCase):
         builtin = tcpmsim.Scenario.from_yaml(FORCE_STEPS, set=SHORT).run()
         simulator = tcpmsim.Simulator(tcpmsim.Scenario.from_yaml(EXTERNAL, set=SHORT))
         self.assertEqual(list(simulator.inputs()), ["controller.power_command"])
-        # The reference the PID follows: the step sequence as its record holds it, at the
-        # sample instants (the same signal, read where the PID reads it).
-        reference = dict(zip(builtin["time"], builtin["controller/reference"]))
+        # The reference the PID follows, as the external controller reports it at each sample.
         state = {"integral": 0.0}
         outputs = simulator.outputs()
         while not simulator.finished:
-            r = reference[simulator.time]
-            power = pid_power(r, outputs["estimator/force"], state)
+            power = pid_power(outputs["controller/reference"], outputs["estimator/force"], state)
             outputs = simulator.step({"controller.power_command": power}, 0.05)
         stepped = simulator.result()
         self.assertEqual(stepped.status, "complete")
         for channel in ("muscle/force", "muscle/temperature", "drive/power",
                         "drive/inductance_measure", "estimator/force",
-                        "controller/power_command"):
+                        "controller/power_command", "controller/reference"):
             with self.subTest(channel=channel):
                 np.testing.assert_array_equal(stepped[channel], builtin[channel])
 
@@ -88,6 +86,49 @@ class SimulatorTest(unittest.TestCase):
                 self.assertEqual(record.attrs["status"], "complete")
                 np.testing.assert_array_equal(record["controller/power_command"][1:],
                                               np.full(40, 1.0))
+
+
+class ControlTaskTest(unittest.TestCase):
+    def test_the_analysis_of_control_tasks_on_any_closed_run(self):
+        """tcpmsim.control_task is `tcpmsim control-tasks`' analysis (without its calibration
+        runs): the same rise times, Bode points, bandwidth and estimation errors, bit for bit."""
+        sweep = "configs/ch7_control/force_sweep.yaml"
+        with tempfile.TemporaryDirectory() as directory:
+            path = os.path.join(directory, "tasks.h5")
+            subprocess.run([os.environ["TCPMSIM"], "control-tasks", FORCE_STEPS, sweep,
+                            "--no-calibration", "-q", "-o", path], check=True)
+            with h5py.File(path) as tasks:
+                steps, swept = tasks["ch7_force_steps"], tasks["ch7_force_sweep"]
+                task = tcpmsim.control_task(tcpmsim.Scenario.from_yaml(FORCE_STEPS).run())
+                for key in ("step_time", "rise_time"):
+                    np.testing.assert_array_equal(task["steps"][key], steps[key][:])
+                self.assertEqual(task["steps"]["reached"], [bool(v) for v in steps["reached"]])
+                errors = steps["estimation_error"][:]
+                self.assertEqual(task["estimation_error"]["count"], len(errors))
+                self.assertAlmostEqual(task["estimation_error"]["mean"], errors.mean(), places=15)
+                task = tcpmsim.control_task(tcpmsim.Scenario.from_yaml(sweep).run())
+                for key in ("frequency", "phase"):
+                    np.testing.assert_array_equal(task["response"][key], swept[key][:])
+                np.testing.assert_array_equal(task["response"]["magnitude_db"],
+                                              swept["magnitude"][:])
+                self.assertEqual(task["bandwidth"], swept["bandwidth"][0])
+        # The thesis' force bandwidth, 0.056 Hz (section 7.4), from the same PI.
+        self.assertAlmostEqual(task["bandwidth"], 0.056, delta=0.002)
+
+    def test_tracking_error_and_refusals(self):
+        result = tcpmsim.Scenario.from_yaml(FORCE_STEPS, set=SHORT).run()
+        task = tcpmsim.control_task(result, estimate="")
+        self.assertNotIn("estimation_error", task)
+        time, force = result["time"], result["muscle/force"]
+        after = time >= 40.0  # the first step
+        error = force[after] - result["controller/reference"][after]
+        self.assertEqual(task["tracking_error"]["count"], after.sum())
+        self.assertAlmostEqual(task["tracking_error"]["rmse"], np.sqrt(np.mean(error ** 2)),
+                               places=14)
+        with self.assertRaisesRegex(tcpmsim.UsageError, "not a controller's reference signal"):
+            tcpmsim.control_task(result, reference="muscle/force")
+        with self.assertRaisesRegex(tcpmsim.UsageError, "not a scalar in the reference's unit"):
+            tcpmsim.control_task(result, truth="muscle/temperature")
 
 
 class EnvironmentTest(unittest.TestCase):
@@ -132,6 +173,23 @@ class EnvironmentTest(unittest.TestCase):
         self.assertTrue(env.observation_space.contains(observation))
         with self.assertRaisesRegex(ValueError, "target"):
             MuscleEnv(EXTERNAL, target="angle")
+
+    def test_the_task_is_the_scenario_reference_unless_one_is_given(self):
+        settings = {"scenario.duration": "45 s"}
+        env = MuscleEnv(tcpmsim.Scenario.from_yaml(EXTERNAL, set=settings))
+        observation, info = env.reset()
+        self.assertAlmostEqual(observation[1], 0.45, places=12)  # the lead-in, mid-range
+        while info["time"] < 41.0:
+            observation, _, _, _, info = env.step([1.0])
+        self.assertAlmostEqual(observation[1], 0.375, places=12)  # the first step, at 40 s
+        self.assertEqual(info["reference"], observation[1])
+        with self.assertRaisesRegex(ValueError, "is in m, but the scenario.s task .* is in N"):
+            MuscleEnv(tcpmsim.Scenario.from_yaml(EXTERNAL, set=settings), target="deflection")
+        with self.assertRaisesRegex(ValueError, "reports no task"):
+            with open(EXTERNAL) as config:
+                untasked = "".join(line for line in config
+                                   if not line.startswith(("  target:", "  reference:")))
+            MuscleEnv(tcpmsim.Scenario.from_yaml(untasked, set=settings))
 
 
 if __name__ == "__main__":
