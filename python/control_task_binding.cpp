@@ -3,11 +3,15 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "analysis/control_tasks.h"
 #include "analysis/record_channels.h"
+#include "analysis/step_response.h"
 #include "analysis/task_runs.h"
 #include "python/bindings.h"
 #include "sim/config/config_error.h"
@@ -32,8 +36,22 @@ py::dict statistics_dict(const std::vector<double>& errors) {
   return result;
 }
 
-py::dict rises_dict(const std::vector<StepRise>& rises) {
-  std::vector<double> step_time, target, start, rise_time;
+// Each step's overshoot as a controller is judged by it: the largest excursion beyond the new
+// reference, away from the old, over the step's hold, as a fraction of the reference's change.
+double reference_overshoot(const StepRise& rise, std::span<const double> time,
+                           std::span<const double> reference, std::span<const double> truth) {
+  const auto first = static_cast<std::size_t>(
+      std::lower_bound(time.begin(), time.end(), rise.step_time) - time.begin());
+  if (first == 0) return std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> held;
+  for (std::size_t k = first; k < time.size() && time[k] < rise.step_time + rise.hold; ++k)
+    held.push_back(truth[k]);
+  return overshoot_fraction(held, reference[first - 1], rise.target);
+}
+
+py::dict rises_dict(const std::vector<StepRise>& rises, std::span<const double> time,
+                    std::span<const double> reference, std::span<const double> truth) {
+  std::vector<double> step_time, target, start, rise_time, overshoot;
   std::vector<bool> reached;
   for (const auto& rise : rises) {
     step_time.push_back(rise.step_time);
@@ -41,6 +59,7 @@ py::dict rises_dict(const std::vector<StepRise>& rises) {
     start.push_back(rise.start);
     rise_time.push_back(rise.rise_time);
     reached.push_back(rise.reached);
+    overshoot.push_back(reference_overshoot(rise, time, reference, truth));
   }
   py::dict result;
   result["step_time"] = array_of(step_time);
@@ -48,6 +67,7 @@ py::dict rises_dict(const std::vector<StepRise>& rises) {
   result["start"] = array_of(start);
   result["rise_time"] = array_of(rise_time);
   result["reached"] = reached;
+  result["overshoot"] = array_of(overshoot);
   return result;
 }
 
@@ -115,7 +135,8 @@ py::dict control_task(const PyResult& result, const std::string& reference, cons
   task["truth"] = truth_channel;
   task["unit"] = r.unit;
   task["start"] = start;
-  if (!analysis.rises.empty()) task["steps"] = rises_dict(analysis.rises);
+  if (!analysis.rises.empty())
+    task["steps"] = rises_dict(analysis.rises, channels.time, r.values, y.values);
   if (!analysis.response.empty()) task["response"] = response_dict(analysis);
   task["bandwidth"] = analysis.bandwidth ? py::cast(*analysis.bandwidth) : py::none();
   task["tracking_error"] = statistics_dict(tracking);
@@ -134,7 +155,9 @@ void bind_control_task(py::module_& module) {
              py::arg("estimate") = py::none(),
              "The analysis `tcpmsim control-tasks` makes of a chapter-7 task (section 7.4), on a "
              "run closed by any controller: from the reference's first change on, the 10-90 % "
-             "rise time of each step, or the sine fits, Bode points and -3 dB bandwidth of a "
+             "rise time of each step (and its overshoot beyond the new reference, away from the "
+             "old, as a fraction of the reference's change), or the sine fits, Bode points and -3 "
+             "dB bandwidth of a "
              "stepped sine sweep; the tracking error truth - reference and the estimation error "
              "estimate - truth (count, mean, standard_deviation, half_width_95, rmse). `truth` "
              "and `estimate` default to the muscle's and the estimator's force or deflection, by "

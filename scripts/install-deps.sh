@@ -19,6 +19,7 @@ packages=(
   clang libclang-rt-14-dev                 # libFuzzer targets (scripts/fuzz.sh)
   python3 python3-h5py python3-numpy python3-matplotlib python3-scipy  # plots, benchmark
   python3-dev pybind11-dev                 # the Python module (pybind11: the standard C++ binding)
+  python3-cvxopt                           # the QP of examples/mpc_controller.py
 )
 
 missing=()

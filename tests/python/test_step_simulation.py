@@ -125,6 +125,12 @@ class ControlTaskTest(unittest.TestCase):
         self.assertEqual(task["tracking_error"]["count"], after.sum())
         self.assertAlmostEqual(task["tracking_error"]["rmse"], np.sqrt(np.mean(error ** 2)),
                                places=14)
+        # The first step, 0.45 -> 0.375 N at 40 s: its overshoot is how far the force goes below
+        # 0.375 N before the next step, over the reference's change.
+        held = (time >= 40.0) & (time < 60.0)
+        below = max(0.0, 0.375 - force[held].min()) / 0.075
+        self.assertAlmostEqual(task["steps"]["overshoot"][0], below, places=12)
+        self.assertGreater(below, 0.0)
         with self.assertRaisesRegex(tcpmsim.UsageError, "not a controller's reference signal"):
             tcpmsim.control_task(result, reference="muscle/force")
         with self.assertRaisesRegex(tcpmsim.UsageError, "not a scalar in the reference's unit"):
