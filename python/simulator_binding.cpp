@@ -39,20 +39,19 @@ class PySimulator {
     return outputs();
   }
 
+  void set_parameter(const std::string& path, double value) {
+    simulator_->set_parameter(path, value);
+    parameters_.emplace_back(path, value);
+  }
+
   py::dict step(const py::object& inputs, double dt) {
     if (!(dt > 0.0)) throw py::value_error("step: dt must be positive");
-    // k dt from the last reset rather than a sum of dt's, while the steps are equal: the times
-    // then fall on a sample grid of dt exactly as a sampled component's do.
-    if (dt != step_ || simulator_->time() != static_cast<double>(steps_) * step_) {
-      step_ = dt;
-      steps_ = static_cast<long>(std::llround(simulator_->time() / dt));
-      if (static_cast<double>(steps_) * dt != simulator_->time()) steps_ = -1;
+    set_inputs(inputs);
+    {
+      const py::gil_scoped_release released;
+      simulator_->step(dt);
     }
-    const double target =
-        steps_ >= 0 ? static_cast<double>(steps_ + 1) * dt : simulator_->time() + dt;
-    py::dict result = advance_to(std::min(target, simulator_->end_time()), inputs);
-    if (steps_ >= 0) ++steps_;
-    return result;
+    return outputs();
   }
 
   void set_inputs(const py::object& inputs) {
@@ -122,22 +121,12 @@ class PySimulator {
     if (!parameters_.empty()) made->reset();
     simulator_ = std::move(made);
     layout_ = record_layout(*simulator_->scenario().system);
-    steps_ = 0;
   }
 
- public:
-  void set_parameter(const std::string& path, double value) {
-    simulator_->set_parameter(path, value);
-    parameters_.emplace_back(path, value);
-  }
-
- private:
   PyScenario scenario_;
   std::unique_ptr<StepSimulator> simulator_;
   std::vector<RecordSeries> layout_;
   std::vector<std::pair<std::string, double>> parameters_;
-  double step_ = 0.0;
-  long steps_ = 0;
 };
 
 }  // namespace

@@ -1,6 +1,8 @@
 #include "sim/step_simulator.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 
 #include "sim/io/record_layout.h"
@@ -75,6 +77,19 @@ void StepSimulator::set_input(std::string_view input, double value) {
 
 double StepSimulator::input(std::string_view input) const {
   return held_[static_cast<std::size_t>(input_index(input))];
+}
+
+void StepSimulator::step(double dt) {
+  if (!(dt > 0.0)) throw std::invalid_argument("step: dt must be positive, got " + number_text(dt));
+  const double now = time();
+  if (dt != grid_step_ || now != static_cast<double>(grid_samples_) * grid_step_) {
+    grid_step_ = dt;
+    grid_samples_ = std::llround(now / dt);
+    if (static_cast<double>(grid_samples_) * dt != now) grid_samples_ = -1;
+  }
+  const double target = grid_samples_ >= 0 ? static_cast<double>(grid_samples_ + 1) * dt : now + dt;
+  advance_to(std::min(target, end_time()));
+  if (grid_samples_ >= 0) ++grid_samples_;
 }
 
 void StepSimulator::advance_to(double time) {

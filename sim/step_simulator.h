@@ -57,6 +57,10 @@ class StepSimulator {
   // Integrates to `time` (at most end_time()). Throws std::invalid_argument for a time before
   // time() or after the end, SolverFailure when CVODE fails (the run then stays failed: reset).
   void advance_to(double time);
+  // Advances by dt (> 0; at most to the end). Equal steps since a reset, or since the time
+  // reached was a multiple of dt, land on the grid k dt exactly rather than on a sum of dt's, so
+  // a master's samples fall on a sampled component's instants (a 20 Hz drive's).
+  void step(double dt);
 
   // An output "group.name" (channels of a bundle's members: "b/m003/muscle.force") or a state
   // "group.state" at time(). Throws std::invalid_argument naming the unknown name.
@@ -90,6 +94,8 @@ class StepSimulator {
   std::unique_ptr<OutputSink> sink_;
   std::unique_ptr<Integrator> integrator_;
   std::vector<double> held_;  // per external input
+  double grid_step_ = 0.0;    // step(): the dt of the grid, and the samples on it so far
+  long grid_samples_ = -1;    // (-1: the time reached is off the grid)
   bool failed_ = false;
 };
 

@@ -1,6 +1,8 @@
 // Every class of bad input gets one located message: file:line:col, key path, expectation.
 #include <catch2/catch.hpp>
 
+#include <array>
+
 #include "tests/support/test_support.h"
 
 using namespace tcpmsim;
@@ -366,4 +368,25 @@ TEST_CASE("A control byte in a file is refused where it is, and never printed ra
                   "C, 5 \xc2\xb5m \xff\xfe\xe2\x82") ==
         "23 \xc2\xb0"
         "C, 5 \xc2\xb5m \\xff\\xfe\\xe2\\x82");
+}
+
+TEST_CASE("A unit's SI base form: exponents of kg m s A K mol cd rad, a factor and an offset") {
+  const UnitSystem& units = *shared_units();
+  using E = std::array<int, 8>;
+  CHECK(units.si_base("W").exponents == E{1, 2, -3, 0, 0, 0, 0, 0});
+  CHECK(units.si_base("N/m").exponents == E{1, 0, -2, 0, 0, 0, 0, 0});
+  CHECK(units.si_base("H").exponents == E{1, 2, -2, -2, 0, 0, 0, 0});
+  CHECK(units.si_base("1").exponents == E{});
+  CHECK(units.si_base("rad").exponents == E{0, 0, 0, 0, 0, 0, 0, 1});
+  // value [base] = factor * value [unit] + offset: 1 mN = 1e-3 N, 20 degC = 293.15 K.
+  const SiBaseUnit millinewton = units.si_base("mN");
+  CHECK(millinewton.exponents == E{1, 1, -2, 0, 0, 0, 0, 0});
+  CHECK(millinewton.factor == Approx(1e-3).epsilon(1e-15));
+  CHECK(millinewton.offset == 0.0);
+  const SiBaseUnit celsius = units.si_base("degC");
+  CHECK(celsius.exponents == E{0, 0, 0, 0, 1, 0, 0, 0});
+  CHECK(celsius.factor == 1.0);
+  CHECK(celsius.offset == Approx(273.15).epsilon(1e-15));
+  CHECK(units.si_base("furlong/fortnight").exponents == E{0, 1, -1, 0, 0, 0, 0, 0});
+  CHECK_THROWS_AS(units.si_base("quux"), UnitError);
 }

@@ -2,6 +2,7 @@
 
 #include <udunits2.h>
 
+#include <algorithm>
 #include <mutex>
 
 namespace tcpmsim {
@@ -132,6 +133,86 @@ std::string UnitSystem::describe_dimension(std::string_view unit) const {
     if (!dimension.dimensionless && convertible(unit, dimension.unit)) return described(dimension);
   }
   return {};
+}
+
+namespace {
+
+// Collects a parsed unit's base units and powers (udunits represents every unit as a product of
+// basic units, possibly scaled and offset: a galilean unit).
+struct BaseCollector {
+  SiBaseUnit base;
+  std::string problem;
+};
+
+ut_status visit_basic(const ut_unit* unit, void* data);
+ut_status visit_product(const ut_unit*, int count, const ut_unit* const* basics, const int* powers,
+                        void* data) {
+  auto& collector = *static_cast<BaseCollector*>(data);
+  for (int k = 0; k < count; ++k) {
+    const char* symbol = ut_get_symbol(basics[k], UT_ASCII);
+    const auto& symbols = SiBaseUnit::kSymbols;
+    const auto found = std::find_if(symbols.begin(), symbols.end(), [&](const char* known) {
+      return symbol && std::string_view(symbol) == known;
+    });
+    if (found == symbols.end()) {
+      collector.problem = std::string("a base unit outside SI's: ") + (symbol ? symbol : "?");
+      return UT_VISIT_ERROR;
+    }
+    collector.base.exponents[static_cast<std::size_t>(found - symbols.begin())] += powers[k];
+  }
+  return UT_SUCCESS;
+}
+ut_status visit_basic(const ut_unit* unit, void* data) {
+  const int power = 1;
+  return visit_product(unit, 1, &unit, &power, data);
+}
+ut_status visit_galilean(const ut_unit*, double scale, const ut_unit* underlying, double offset,
+                         void* data);
+ut_status visit_timestamp(const ut_unit*, const ut_unit*, double, void* data) {
+  static_cast<BaseCollector*>(data)->problem = "a timestamp unit";
+  return UT_VISIT_ERROR;
+}
+ut_status visit_logarithmic(const ut_unit*, double, const ut_unit*, void* data) {
+  static_cast<BaseCollector*>(data)->problem = "a logarithmic unit";
+  return UT_VISIT_ERROR;
+}
+ut_visitor base_visitor() {
+  ut_visitor visitor{};
+  visitor.visit_basic = visit_basic;
+  visitor.visit_product = visit_product;
+  visitor.visit_galilean = visit_galilean;
+  visitor.visit_timestamp = visit_timestamp;
+  visitor.visit_logarithmic = visit_logarithmic;
+  return visitor;
+}
+// udunits' galilean unit: value [underlying] = scale * value [unit] + offset (degC: 1, 273.15;
+// mN: 0.001, 0), composed with the underlying's own value [base] = factor * value + offset.
+ut_status visit_galilean(const ut_unit*, double scale, const ut_unit* underlying, double offset,
+                         void* data) {
+  auto& collector = *static_cast<BaseCollector*>(data);
+  ut_visitor visitor = base_visitor();
+  BaseCollector inner;
+  if (ut_accept_visitor(underlying, &visitor, &inner) != UT_SUCCESS) {
+    collector.problem = inner.problem;
+    return UT_VISIT_ERROR;
+  }
+  collector.base.exponents = inner.base.exponents;
+  collector.base.factor = scale * inner.base.factor;
+  collector.base.offset = offset * inner.base.factor + inner.base.offset;
+  return UT_SUCCESS;
+}
+
+}  // namespace
+
+SiBaseUnit UnitSystem::si_base(std::string_view unit) const {
+  const std::lock_guard lock(udunits_mutex());
+  UnitPointer parsed = parse(handle_->system, unit);
+  if (!parsed) throw UnitError("'" + std::string(unit) + "' is not a unit");
+  ut_visitor visitor = base_visitor();
+  BaseCollector collector;
+  if (ut_accept_visitor(parsed.get(), &visitor, &collector) != UT_SUCCESS)
+    throw UnitError("'" + std::string(unit) + "' has no SI base form: " + collector.problem);
+  return collector.base;
 }
 
 double UnitSystem::convert(double value, std::string_view from, std::string_view to) const {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <stdexcept>
@@ -11,6 +12,16 @@ namespace tcpmsim {
 class UnitError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+// A unit as SI base units: value [unit] = factor * value [base] + offset, base =
+// kg^e0 m^e1 s^e2 A^e3 K^e4 mol^e5 cd^e6 rad^e7 (an FMU's <BaseUnit>, FMI 2.0 section 2.2.2).
+struct SiBaseUnit {
+  static constexpr std::array<const char*, 8> kSymbols{"kg", "m",   "s",  "A",
+                                                       "K",  "mol", "cd", "rad"};
+  std::array<int, 8> exponents{};
+  double factor = 1.0;
+  double offset = 0.0;
 };
 
 // Unit conversion at the configuration boundary, backed by udunits2 and its unit database.
@@ -37,6 +48,9 @@ class UnitSystem {
   // (force/length), e.g. N/m or N/mm" for N/m or any unit of its dimension; empty for a unit of
   // a dimension this table does not name.
   std::string describe_dimension(std::string_view unit) const;
+  // `unit` in SI base units. Throws UnitError for a unit udunits does not know, or one built on
+  // a base outside SiBaseUnit's (a timestamp, a logarithmic unit).
+  SiBaseUnit si_base(std::string_view unit) const;
 
  private:
   struct Handle;
