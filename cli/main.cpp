@@ -16,6 +16,7 @@
 #include "analysis/control_tasks_command.h"
 #include "analysis/provenance.h"
 #include "analysis/spring_forces_command.h"
+#include "cli/export_fmu.h"
 #include "cli/interrupt.h"
 #include "cli/progress.h"
 #include "identification/bench_measurement.h"
@@ -74,6 +75,7 @@ struct Options {
   int fit_jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   tcpmsim::fit::DiscoverRequest discover;  // discover
   bool plots = true;
+  tcpmsim::cli::ExportFmuOptions export_fmu;
 };
 
 tcpmsim::Scenario load(const Options& options) {
@@ -395,6 +397,10 @@ int measure(const Options& options) {
 }
 
 int report_errors(int (*command)(const Options&), const Options& options);
+
+int export_fmu(const Options& options) {
+  return tcpmsim::cli::export_fmu(options.export_fmu);
+}
 
 // Under an MPI launcher every rank meets the same bad input: rank 0 alone says so.
 int guarded(int (*command)(const Options&), const Options& options) {
@@ -751,6 +757,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 256));
   fit_command->add_flag("-q,--quiet", options.quiet, "No summary");
 
+  CLI::App* export_fmu_command = tcpmsim::cli::add_export_fmu(app, options.export_fmu);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -772,5 +780,6 @@ int main(int argc, char** argv) {
   if (fit_command->parsed()) return guarded(fit, options);
   if (measure_command->parsed()) return guarded(measure, options);
   if (discover_command->parsed()) return guarded(discover, options);
+  if (export_fmu_command->parsed()) return guarded(export_fmu, options);
   return guarded(validate, options);
 }

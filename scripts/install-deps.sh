@@ -16,6 +16,7 @@ packages=(
   libceres-dev                             # fit: Levenberg-Marquardt with bounds (Ceres Solver)
   nlohmann-json3-dev                       # fit and discover reports as JSON
   libboost-dev                             # Boost.Math: the chi-squared tail of the Ljung-Box test
+  libzip-dev libxml2-dev                   # export-fmu: the .fmu archive, its description's rules
   clang libclang-rt-14-dev                 # libFuzzer targets (scripts/fuzz.sh)
   python3 python3-h5py python3-numpy python3-matplotlib python3-scipy  # plots, benchmark
   python3-dev pybind11-dev                 # the Python module (pybind11: the standard C++ binding)

@@ -31,3 +31,16 @@ package=$(find "$prefix" -name __init__.py -path '*tcpmsim*')
 (cd "$scratch" && PYTHONPATH=$(dirname "$(dirname "$package")") "$python" -c "
 import tcpmsim
 print('ok: installed tcpmsim', tcpmsim.__version__, 'from', tcpmsim.__file__)")
+# The installed program packs the installed FMU library (<prefix>/lib/tcpmsim/tcpmsim_fmu.so),
+# found beside it, not the build tree's.
+fmu_library=$prefix/${TCPMSIM_LIBDIR:-lib}/tcpmsim/tcpmsim_fmu.so
+test -s "$fmu_library" || { echo "FAIL: $fmu_library not installed"; exit 1; }
+listing=$("$prefix/bin/tcpmsim" export-fmu "$source/configs/ch7_control/external_force.yaml" \
+  -o "$scratch/muscle.fmu")
+[[ $listing == *"library $fmu_library"* ]] ||
+  { echo "FAIL: the installed export-fmu did not pack $fmu_library: $listing"; exit 1; }
+(cd "$scratch" && mkdir unpacked && cd unpacked && "$python" -c "
+import zipfile, sys; zipfile.ZipFile(sys.argv[1]).extractall()" "$scratch/muscle.fmu")
+cmp "$fmu_library" "$scratch/unpacked/binaries/linux64/ch7_external_force.so" ||
+  { echo "FAIL: the installed program did not pack the installed FMU library"; exit 1; }
+echo "ok: the installed export-fmu packs $fmu_library"
