@@ -27,6 +27,32 @@ print(' '.join(record_compare.differences(sys.argv[1], sys.argv[2], ignore=['/@c
   "$scratch/program.h5" "$scratch/external.h5")
 [[ -z $differences ]] || { echo "FAIL: the records differ in: $differences"; exit 1; }
 echo "ok: an external project built against $prefix writes the program's record"
+# Its own controller kind (relay_controller.h), registered by name and used from YAML: a relay
+# on the self-sensed force. It commands only the limits, keeps the estimate near the reference
+# within its band (plus the thermal lag's overshoot), and its band is a parameter --set reaches.
+relay_config=$source/tests/install/external/relay_force.yaml
+"$scratch/external/run_with_relay" "$relay_config" "$scratch/relay.h5" >/dev/null
+"$scratch/external/run_with_relay" "$relay_config" "$scratch/relay_wide.h5" "controller.band=20 mN" >/dev/null
+"$python" -c "
+import sys, h5py, numpy as np
+switches = []
+for path, band in ((sys.argv[1], 0.010), (sys.argv[2], 0.020)):
+    with h5py.File(path) as record:
+        t, power = record['time'][:], record['controller/power_command'][:]
+        estimate, reference = record['estimator/force'][:], record['controller/reference'][:]
+    assert set(np.unique(power)) == {0.10, 3.12}, np.unique(power)
+    after = t >= 40.0
+    worst = np.max(np.abs(estimate[after] - reference[after]))
+    assert worst < 1.5 * band, (path, worst)
+    switches.append(int(np.sum(np.diff(power) != 0)))
+assert switches[1] < switches[0], switches
+print('ok: a controller kind of the external project runs from YAML:', switches, 'switches')
+" "$scratch/relay.h5" "$scratch/relay_wide.h5"
+if message=$("$scratch/external/run_with_relay" "$relay_config" "$scratch/bad.h5" controller.gain=3 2>&1); then
+  echo "FAIL: an unknown key of the user's kind was accepted"; exit 1
+fi
+[[ $message == *"controller.gain: unknown key 'gain'; known keys here: band, estimator, power_limits, reference, type"* ]] ||
+  { echo "FAIL: the user's kind's bad key gave: $message"; exit 1; }
 package=$(find "$prefix" -name __init__.py -path '*tcpmsim*')
 (cd "$scratch" && PYTHONPATH=$(dirname "$(dirname "$package")") "$python" -c "
 import tcpmsim
