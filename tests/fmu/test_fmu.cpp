@@ -295,6 +295,15 @@ TEST_CASE("The rules checker finds what breaks FMI 2.0 in a description") {
              Catch::Contains("min is above max"));
   CHECK_THAT(problems_after("name=\"muscle.force\"", "name=\"muscle force\""),
              Catch::Contains("not a structured name"));
+  // Structured names (2.2.9): dotted identifiers or 'quoted names', indices, der(...).
+  for (const std::string good : {"muscle.force[1,2]", "der(muscle.force)", "der(muscle.x,2)",
+                                 "'muscle force'.value", "_a.b3"})
+    CHECK_THAT(problems_after("name=\"muscle.force\"", "name=\"" + good + "\""),
+               !Catch::Contains("not a structured name"));
+  for (const std::string bad : {"muscle..force", "muscle.force[]", "muscle.force[1,]", "3d.x",
+                                "muscle.", "der(muscle force)"})
+    CHECK_THAT(problems_after("name=\"muscle.force\"", "name=\"" + bad + "\""),
+               Catch::Contains("not a structured name"));
   CHECK_THAT(problems_after("modelIdentifier=\"ch7_external_force\"", "modelIdentifier=\"7-x\""),
              Catch::Contains("modelIdentifier must be a C identifier"));
   CHECK(tcpmsim::fmu::model_description_problems("<fmiModelDescription") ==
