@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -303,9 +304,11 @@ int fit(const Options& options) {
   return kSuccess;
 }
 
-// The plotting script: beside the program when installed (bin/tcpmsim-plot), else the source
-// tree's tools/tcpmsim-plot.
+// The plotting script: the one TCPMSIM_PLOT_TOOL names (the wheel's console script sets it to
+// the tcpmsim-plot installed beside it), else beside the program when installed
+// (bin/tcpmsim-plot), else the source tree's tools/tcpmsim-plot.
 std::string plot_tool() {
+  if (const char* named = std::getenv("TCPMSIM_PLOT_TOOL"); named && *named) return named;
   std::error_code error;
   const auto program = std::filesystem::read_symlink("/proc/self/exe", error);
   if (!error) {

@@ -7,7 +7,9 @@ set(TCPMSIM_LIBRARIES tcpmsim_engine tcpmsim_components tcpmsim_analysis tcpmsim
 set(TCPMSIM_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/tcpmsim)
 
 install(TARGETS tcpmsim RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-install(PROGRAMS tools/tcpmsim-plot DESTINATION ${CMAKE_INSTALL_BINDIR})
+if(NOT TCPMSIM_PYTHON)  # with Python, python/CMakeLists.txt installs it with its package
+  install(PROGRAMS tools/tcpmsim-plot DESTINATION ${CMAKE_INSTALL_BINDIR})
+endif()
 install(TARGETS ${TCPMSIM_LIBRARIES} EXPORT tcpmsimTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 # The headers keep the source tree's layout: #include "sim/scenario.h" from include/tcpmsim.

@@ -21,6 +21,7 @@ packages=(
   python3 python3-h5py python3-numpy python3-matplotlib python3-scipy  # plots, benchmark
   python3-dev pybind11-dev                 # the Python module (pybind11: the standard C++ binding)
   python3-cvxopt                           # the QP of examples/mpc_controller.py
+  python3-build python3-setuptools python3-wheel python3-venv python3-pip  # the wheel, a venv
 )
 
 missing=()

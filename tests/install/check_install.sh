@@ -53,10 +53,16 @@ if message=$("$scratch/external/run_with_relay" "$relay_config" "$scratch/bad.h5
 fi
 [[ $message == *"controller.gain: unknown key 'gain'; known keys here: band, estimator, power_limits, reference, type"* ]] ||
   { echo "FAIL: the user's kind's bad key gave: $message"; exit 1; }
-package=$(find "$prefix" -name __init__.py -path '*tcpmsim*')
+package=$(find "$prefix" -path '*/tcpmsim/__init__.py')
 (cd "$scratch" && PYTHONPATH=$(dirname "$(dirname "$package")") "$python" -c "
 import tcpmsim
+assert tcpmsim.__file__.startswith('$prefix'), 'not the installed module: ' + tcpmsim.__file__
 print('ok: installed tcpmsim', tcpmsim.__version__, 'from', tcpmsim.__file__)")
+# The installed tcpmsim-plot finds its package where cmake --install put it (issue 30: the
+# launcher looked beside itself and found nothing), run from outside the sources.
+(cd "$scratch" && env -u PYTHONPATH "$prefix/bin/tcpmsim-plot" traces program.h5 -o installed_plot.png >/dev/null)
+test -s "$scratch/installed_plot.png" || { echo "FAIL: the installed tcpmsim-plot drew nothing"; exit 1; }
+echo "ok: the installed tcpmsim-plot draws from $prefix"
 # The installed program packs the installed FMU library (<prefix>/lib/tcpmsim/tcpmsim_fmu.so),
 # found beside it, not the build tree's.
 fmu_library=$prefix/${TCPMSIM_LIBDIR:-lib}/tcpmsim/tcpmsim_fmu.so
