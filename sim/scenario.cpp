@@ -151,6 +151,36 @@ std::vector<std::string> instance_sections(const KindRegistry& kinds) {
   return sections;
 }
 
+namespace {
+
+// At the section whose builder caused it (the first origin), naming the sections of the others
+// ("; from drives.a, drives.b"); at the top when none is known.
+[[noreturn]] void report_assembly_error(const ConfigNode& root,
+                                        const std::vector<InstanceDeclaration>& instances,
+                                        const AssemblyError& error) {
+  std::string message = std::string("the scenario does not assemble: ") + error.what();
+  const auto& origins = error.origins();
+  auto known = [&](int origin) {
+    return origin >= 0 && static_cast<std::size_t>(origin) < instances.size();
+  };
+  std::vector<std::string> sections;
+  for (std::size_t k = 1; k < origins.size(); ++k)
+    if (known(origins[k])) {
+      const std::string& path = instances[static_cast<std::size_t>(origins[k])].node.path();
+      if (std::find(sections.begin(), sections.end(), path) == sections.end())
+        sections.push_back(path);
+    }
+  if (sections.size() > 1) {
+    message += "; from ";
+    for (std::size_t k = 0; k < sections.size(); ++k) message += (k ? ", " : "") + sections[k];
+  }
+  if (!origins.empty() && known(origins.front()))
+    instances[static_cast<std::size_t>(origins.front())].node.fail(message);
+  root.fail(message);
+}
+
+}  // namespace
+
 Scenario build_scenario(const ConfigNode& root, const KindRegistry& kinds) {
   Scenario scenario;
   scenario.settings = read_settings(root, kinds);
@@ -162,11 +192,19 @@ Scenario build_scenario(const ConfigNode& root, const KindRegistry& kinds) {
         sections += (sections.empty() ? "" : ", ") + category.name + "/" + category.plural;
     root.fail("expected at least one instance: a section of " + sections);
   }
-  for (const auto& instance : build.instances())
+  // Each instance's additions and connections carry its index, so that an assembly error is
+  // reported at the section that caused it.
+  for (std::size_t k = 0; k < build.instances().size(); ++k) {
+    const auto& instance = build.instances()[k];
+    build.system().set_origin(static_cast<int>(k));
     kinds.builder<InstanceBuilder> (*instance.kind)(instance.node, instance.name, build);
+  }
+  build.system().set_origin(-1);
   build.run_checks();
   try {
     scenario.system = build.system().build();
+  } catch (const AssemblyError& error) {
+    report_assembly_error(root, build.instances(), error);
   } catch (const std::logic_error& error) {
     root.fail(std::string("the scenario does not assemble: ") + error.what());
   }

@@ -28,7 +28,7 @@ std::string named(const Component& component) {
 
 void SystemBuilder::connect(const Component& consumer, std::string_view input_name,
                             std::string_view source_output) {
-  connections_.push_back({&consumer, std::string(input_name), std::string(source_output)});
+  connections_.push_back({&consumer, std::string(input_name), std::string(source_output), origin_});
 }
 
 void SystemBuilder::export_input(std::string_view port, const Component& consumer,
@@ -43,14 +43,19 @@ void SystemBuilder::share_input(std::string_view port, const Component& consumer
 }
 
 void SystemBuilder::connect(std::string_view port, std::string_view source_output) {
-  port_connections_.emplace_back(std::string(port), std::string(source_output));
+  port_connections_.push_back({std::string(port), std::string(source_output), origin_});
 }
 
 bool SystemBuilder::is_connected(std::string_view port) const {
-  for (const auto& [connected, source] : port_connections_) {
-    if (connected == port) return true;
+  for (const auto& connection : port_connections_) {
+    if (connection.port == port) return true;
   }
   return false;
+}
+
+int SystemBuilder::origin_of(const Component& component) const {
+  const auto found = component_origins_.find(&component);
+  return found == component_origins_.end() ? -1 : found->second;
 }
 
 void SystemBuilder::derive(std::string path, ParameterRule rule, std::string explanation) {
@@ -77,9 +82,9 @@ std::shared_ptr<const System> SystemBuilder::build() {
   std::shared_ptr<System> system(new System());
   system->components_ = std::move(components_);
   system->member_sets_ = std::move(member_sets_);
-  system->assign_slices();
+  system->assign_slices(*this);
   system->wire(*this);
-  system->order_by_feedthrough();
+  system->order_by_feedthrough(*this);
   system->collect_parameters(*this);
   *this = SystemBuilder();
   return system;
@@ -88,7 +93,7 @@ std::shared_ptr<const System> SystemBuilder::build() {
 // ---------------------------------------------------------------------------------------------
 // Assembly
 
-void System::assign_slices() {
+void System::assign_slices(const SystemBuilder& builder) {
   std::unordered_set<std::string> state_names;
   std::unordered_set<std::string> parameter_paths;
   for (std::size_t c = 0; c < components_.size(); ++c) {
@@ -98,7 +103,8 @@ void System::assign_slices() {
     for (const auto& declared : component.states()) {
       std::string name = qualified(component, declared.name);
       if (!state_names.insert(name).second) {
-        throw std::logic_error("two components declare the state '" + name + "'");
+        throw AssemblyError("two components declare the state '" + name + "'",
+                            {builder.origin_of(component)});
       }
       states_.push_back({std::move(name), declared.unit, declared.absolute_tolerance, &component});
     }
@@ -107,7 +113,8 @@ void System::assign_slices() {
     for (const auto& declared : component.outputs()) {
       const std::string name = qualified(component, declared.name);
       if (!channel_by_name_.emplace(name, static_cast<int>(channels_.size())).second) {
-        throw std::logic_error("two components publish the output '" + name + "'");
+        throw AssemblyError("two components publish the output '" + name + "'",
+                            {builder.origin_of(component)});
       }
       channels_.push_back({component.group(), declared.name, declared.unit,
                            static_cast<int>(channels_.size()), declared.observed,
@@ -136,51 +143,60 @@ void System::assign_slices() {
       slot.parameter_count = static_cast<int>(parameters_.size()) - slot.first_parameter;
       const std::string name = qualified(component, declared.name);
       if (!slot_by_name_.emplace(name, static_cast<int>(signal_slots_.size())).second)
-        throw std::logic_error("a component declares the signal '" + name + "' twice");
+        throw AssemblyError("a component declares the signal '" + name + "' twice",
+                            {builder.origin_of(component)});
       signal_slots_.push_back(std::move(slot));
     }
   }
   for (std::size_t p = 0; p < parameters_.size(); ++p) {
     const std::string& path = parameters_[p].declaration.path;
     if (!parameter_by_path_.emplace(path, static_cast<int>(p)).second)
-      throw std::logic_error("two components declare the parameter '" + path + "'");
+      throw AssemblyError("two components declare the parameter '" + path + "'", {});
   }
 }
 
 void System::wire(const SystemBuilder& builder) {
-  // Sources per component and input, in connection order.
-  std::vector<std::vector<std::vector<int>>> sources(components_.size());
+  // Sources per component and input, in connection order, with the origin of each connection.
+  struct Source {
+    int signal;
+    int origin;
+  };
+  std::vector<std::vector<std::vector<Source>>> sources(components_.size());
   for (std::size_t c = 0; c < components_.size(); ++c) sources[c].resize(inputs_[c].size());
   auto attach = [&](const Component& consumer, const std::string& input_name,
-                    const std::string& source) {
+                    const std::string& source, int origin) {
     const auto c = static_cast<std::size_t>(consumer.index_);
     const auto& declared = inputs_[c];
     const auto input = std::find_if(declared.begin(), declared.end(),
                                     [&](const auto& d) { return d.name == input_name; });
     if (input == declared.end())
-      throw std::logic_error(named(consumer) + " has no input '" + input_name + "'");
+      throw AssemblyError(named(consumer) + " has no input '" + input_name + "'", {origin});
     const int index = signal_index(source);
     if (index < 0) {
-      throw std::logic_error("no component publishes '" + source + "' (needed by " +
-                             named(consumer) + ")");
+      throw AssemblyError(
+          "no component publishes '" + source + "' (needed by " + named(consumer) + ")", {origin});
     }
     if (channels_[static_cast<std::size_t>(index)].observed && !input->sampled) {
-      throw std::logic_error("'" + source +
-                             "' is an observed output; only sampled inputs may read it (" +
-                             named(consumer) + " input '" + input_name + "')");
+      throw AssemblyError("'" + source +
+                              "' is an observed output; only sampled inputs may read it (" +
+                              named(consumer) + " input '" + input_name + "')",
+                          {origin});
     }
-    sources[c][static_cast<std::size_t>(input - declared.begin())].push_back(index);
+    sources[c][static_cast<std::size_t>(input - declared.begin())].push_back({index, origin});
   };
   for (const auto& connection : builder.connections_)
-    attach(*connection.consumer, connection.input, connection.source);
-  for (const auto& [port, source] : builder.port_connections_) {
-    const auto exported = builder.ports_.find(port);
+    attach(*connection.consumer, connection.input, connection.source, connection.origin);
+  for (const auto& connection : builder.port_connections_) {
+    const auto exported = builder.ports_.find(connection.port);
     if (exported == builder.ports_.end())
-      throw std::logic_error("no input port '" + port + "' (to connect to '" + source + "')");
-    attach(*exported->second.consumer, exported->second.input, source);
-    const auto [first, last] = builder.shared_ports_.equal_range(port);
+      throw AssemblyError(
+          "no input port '" + connection.port + "' (to connect to '" + connection.source + "')",
+          {connection.origin});
+    attach(*exported->second.consumer, exported->second.input, connection.source,
+           connection.origin);
+    const auto [first, last] = builder.shared_ports_.equal_range(connection.port);
     for (auto sharer = first; sharer != last; ++sharer)
-      attach(*sharer->second.consumer, sharer->second.input, source);
+      attach(*sharer->second.consumer, sharer->second.input, connection.source, connection.origin);
   }
   for (std::size_t c = 0; c < components_.size(); ++c) {
     Component& component = *components_[c];
@@ -193,25 +209,29 @@ void System::wire(const SystemBuilder& builder) {
       const auto& wired = sources[c][i];
       const auto count = wired.size();
       if (count == 0 && declared[i].arity == InputArity::one) {
-        throw std::logic_error(named(component) + " input '" + declared[i].name +
-                               "' is not connected");
+        throw AssemblyError(named(component) + " input '" + declared[i].name + "' is not connected",
+                            {builder.origin_of(component)});
       }
       if (count > 1 && declared[i].arity != InputArity::many) {
-        throw std::logic_error(named(component) + " input '" + declared[i].name +
-                               "' takes one source, but " + std::to_string(count) +
-                               " are connected");
+        // Reported at the connection that came last, naming every one's origin.
+        std::vector<int> origins{wired.back().origin};
+        for (const auto& source : wired) origins.push_back(source.origin);
+        throw AssemblyError(named(component) + " input '" + declared[i].name +
+                                "' takes one source, but " + std::to_string(count) +
+                                " are connected",
+                            origins);
       }
-      if (count > 0) component.first_source_[i] = wired.front();
+      if (count > 0) component.first_source_[i] = wired.front().signal;
       component.fan_in_begin_.push_back(static_cast<int>(component.fan_in_sources_.size()));
       component.fan_in_count_.push_back(static_cast<int>(count));
-      component.fan_in_sources_.insert(component.fan_in_sources_.end(), wired.begin(), wired.end());
+      for (const auto& source : wired) component.fan_in_sources_.push_back(source.signal);
     }
     if (std::string problem = component.check_connections(); !problem.empty())
-      throw std::logic_error(named(component) + " " + problem);
+      throw AssemblyError(named(component) + " " + problem, {builder.origin_of(component)});
   }
 }
 
-void System::order_by_feedthrough() {
+void System::order_by_feedthrough(const SystemBuilder& builder) {
   // Kahn's algorithm over "reads through direct feedthrough" edges, first-come first-placed.
   const std::size_t count = components_.size();
   std::vector<std::vector<std::size_t>> readers(count);
@@ -246,12 +266,14 @@ void System::order_by_feedthrough() {
   }
   if (evaluation_order_.size() < count) {
     std::string members;
+    std::vector<int> origins;
     for (std::size_t c = 0; c < count; ++c) {
       if (waiting[c] == 0) continue;
       members += ' ';  // appended piecewise: GCC 12 warns falsely (-Wrestrict) on " " + s
       members += named(*components_[c]);
+      origins.push_back(builder.origin_of(*components_[c]));
     }
-    throw std::logic_error("algebraic loop through direct-feedthrough inputs:" + members);
+    throw AssemblyError("algebraic loop through direct-feedthrough inputs:" + members, origins);
   }
   sampling_order_ = evaluation_order_;
   std::stable_sort(sampling_order_.begin(), sampling_order_.end(),

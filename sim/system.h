@@ -203,9 +203,9 @@ class System {
                                    JacobianEntries entries = JacobianEntries::all) const;
   // Whether `entries` reads input `input` of component `component`.
   bool reads_input(std::size_t component, int input, JacobianEntries entries) const;
-  void assign_slices();
+  void assign_slices(const SystemBuilder& builder);
   void wire(const SystemBuilder& builder);
-  void order_by_feedthrough();
+  void order_by_feedthrough(const SystemBuilder& builder);
   void collect_parameters(const SystemBuilder& builder);
   RunSetup setup_of(const Context& context, std::size_t component) const;
   void rebuild_signals(Context& context) const;
@@ -237,15 +237,32 @@ class System {
   std::vector<ExternalInputInfo> external_inputs_;
 };
 
+// A System that does not assemble, with the origins (SystemBuilder::set_origin) of what caused
+// it, where it should be reported first: the connections that gave an input a source too many,
+// the component whose input has none or that duplicates another's name. Empty: none known.
+class AssemblyError : public std::logic_error {
+ public:
+  AssemblyError(const std::string& what, std::vector<int> origins)
+      : std::logic_error(what), origins_(std::move(origins)) {}
+  const std::vector<int>& origins() const { return origins_; }
+
+ private:
+  std::vector<int> origins_;
+};
+
 // Builds a System: components are added, wired by name and assembled once.
 class SystemBuilder {
  public:
   template <typename T>
   T& add(std::unique_ptr<T> component) {
     T& reference = *component;
+    component_origins_[&reference] = origin_;
     components_.push_back(std::move(component));
     return reference;
   }
+  // What is added and connected from now on comes from `origin`, the caller's index of its
+  // source (the scenario section being built; -1: none), for AssemblyError to name.
+  void set_origin(int origin) { origin_ = origin; }
 
   // Connects `consumer`'s input `input_name` to the output "group.name". A fan-in input may be
   // connected to several outputs, in order.
@@ -272,8 +289,8 @@ class SystemBuilder {
   // Declares the instances "<set.name>/<member>" alike, to be recorded together (MemberSet).
   void declare_members(MemberSet set);
 
-  // Resolves offsets and connections and fixes the evaluation order. Throws std::logic_error on
-  // an unconnected input, an unknown output, a duplicate output, state or parameter, or an
+  // Resolves offsets and connections and fixes the evaluation order. Throws AssemblyError on an
+  // unconnected input, an unknown output, a duplicate output, state or parameter, or an
   // algebraic loop. The builder is empty afterwards.
   std::shared_ptr<const System> build();
 
@@ -283,7 +300,14 @@ class SystemBuilder {
     const Component* consumer;
     std::string input;
     std::string source;
+    int origin;
   };
+  struct PortConnection {
+    std::string port;
+    std::string source;
+    int origin;
+  };
+  int origin_of(const Component& component) const;
   struct Export {
     const Component* consumer;
     std::string input;
@@ -292,7 +316,9 @@ class SystemBuilder {
   std::vector<Connection> connections_;
   std::unordered_map<std::string, Export> ports_;
   std::unordered_multimap<std::string, Export> shared_ports_;
-  std::vector<std::pair<std::string, std::string>> port_connections_;
+  std::vector<PortConnection> port_connections_;
+  int origin_ = -1;
+  std::unordered_map<const Component*, int> component_origins_;
   struct PendingDerivation {
     std::string path;
     ParameterRule rule;

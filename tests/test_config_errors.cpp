@@ -63,8 +63,9 @@ TEST_CASE("An unknown key far from every known one lists the known keys") {
 }
 
 TEST_CASE("A missing key names the section that needs it") {
+  // At the section's key (line 10, "  mechanics:"), not the line below it.
   CHECK(error_of(replaced(kValid, "    k1: 10 N/m\n", "")) ==
-        "test.yaml:11:5: error: muscle.mechanics: missing required key 'k1'");
+        "test.yaml:10:3: error: muscle.mechanics: missing required key 'k1'");
 }
 
 TEST_CASE("A value of the wrong type says what was expected") {
@@ -254,7 +255,7 @@ TEST_CASE("Inconsistent model choices are explained") {
   CHECK(error_of(replaced(
             kValid, "form: physical, force_per_kelvin: 2 mN/K, reference_temperature: 20 degC",
             "form: reduced, kappa_P: 4e-3 N/J, kappa_c: 0.1 1/s, ambient_temperature: 20 degC")) ==
-        "test.yaml:6:5: error: muscle.thermal: the reduced thermal form (7.1) has no thermal node; "
+        "test.yaml:5:3: error: muscle.thermal: the reduced thermal form (7.1) has no thermal node; "
         "remove "
         "muscle.thermal or use thermal_force.form: physical");
 }
@@ -389,4 +390,26 @@ TEST_CASE("A unit's SI base form: exponents of kg m s A K mol cd rad, a factor a
   CHECK(celsius.offset == Approx(273.15).epsilon(1e-15));
   CHECK(units.si_base("furlong/fortnight").exponents == E{0, 1, -1, 0, 0, 0, 0, 0});
   CHECK_THROWS_AS(units.si_base("quux"), UnitError);
+}
+
+TEST_CASE("A scenario that does not assemble is reported at the section that caused it") {
+  const std::string muscle = R"(scenario: {name: t, duration: 1 s}
+output: {rate: 10 Hz}
+muscles:
+  m:
+    thermal_force: {form: reduced, kappa_P: 7.2e-3 N/J, kappa_c: 131.6e-3 1/s, ambient_temperature: 23 degC}
+    mechanics: {k1: 10.8 N/m, k2: 2.7 N/m, damping: 4.3 N*s/m, force_offset: 0.1 N}
+    resistance: 10 ohm
+    inductance: {quantity: measure, lambda_l: 2.81 mm, lambda_x: 28.8 mm, lambda_0: 0.433}
+load: {type: force, force: 0.4 N}
+)";
+  // Two drives heat one muscle: at the second drive's section, naming both.
+  CHECK(error_of(muscle + "drives:\n  a: {mode: power, power: 1 W, muscle: m}\n"
+                          "  b: {mode: power, power: 1 W, muscle: m}\n") ==
+        "test.yaml:12:6: error: drives.b: the scenario does not assemble: m/reduced_thermal_force "
+        "input 'power' takes one source, but 2 are connected; from drives.a, drives.b");
+  // Nothing heats the muscle: at the muscle's key, not at the top of the file nor a line below.
+  CHECK(error_of(muscle) ==
+        "test.yaml:4:3: error: muscles.m: the scenario does not assemble: "
+        "m/reduced_thermal_force input 'power' is not connected");
 }

@@ -413,3 +413,39 @@ TEST_CASE("A zero crossing is located to the solver's accuracy") {
   CHECK(crossed_at[0] == Approx(std::log(2.0)).epsilon(1e-8));
   CHECK(statistics.events == 1);
 }
+
+TEST_CASE("An assembly error names the origins of what caused it, the last connection first") {
+  auto origins_of = [](SystemBuilder& system) {
+    try {
+      system.build();
+    } catch (const AssemblyError& error) {
+      return error.origins();
+    }
+    return std::vector<int>{-99};
+  };
+  {  // an input nothing feeds: the component's origin
+    SystemBuilder system;
+    system.set_origin(4);
+    system.add(std::make_unique<Relay>("a", true));
+    CHECK(origins_of(system) == std::vector<int>{4});
+  }
+  {  // a source too many: the connection that came last, then every connection's origin
+    SystemBuilder system;
+    system.set_origin(0);
+    system.add(std::make_unique<TestState>("a", TestState::Law::decay, 1.0));
+    system.add(std::make_unique<TestState>("b", TestState::Law::decay, 1.0));
+    auto& relay = system.add(std::make_unique<Relay>("c", true));
+    system.set_origin(1);
+    system.connect(relay, "in", "a.value");
+    system.set_origin(2);
+    system.connect(relay, "in", "b.value");
+    CHECK(origins_of(system) == std::vector<int>{2, 1, 2});
+  }
+  {  // a source nobody publishes: that connection's origin
+    SystemBuilder system;
+    auto& relay = system.add(std::make_unique<Relay>("a", true));
+    system.set_origin(7);
+    system.connect(relay, "in", "nowhere.value");
+    CHECK(origins_of(system) == std::vector<int>{7});
+  }
+}

@@ -174,7 +174,7 @@ TEST_CASE("a bad sweep file gets one located error before any run", "[sweep]") {
                                 "J/K, to: 2 J/K, count: 1000}}\n"
                                 "  - {parameter: muscle.mechanics.k1, range: {from: 1 N/m, to: 2 "
                                 "N/m, count: 1000}}\n"),
-             Catch::Contains("sweep.yaml:4:3: error: axes: the axes make 1000 x 1000 x 1000 = "
+             Catch::Contains("sweep.yaml:3:1: error: axes: the axes make 1000 x 1000 x 1000 = "
                              "1e+09 runs, over the limit of 1e+06 runs a sweep"));
   CHECK_THAT(
       sweep_error(axis("{parameter: muscle.thermal.conductance, range: {from: 1 W/K, to: 2 W/K, "

@@ -443,7 +443,9 @@ const UnitSystem& ConfigNode::units() const {
 }
 
 SourceLocation ConfigNode::location() const {
-  return locate(*document_, path_, node_.Mark());
+  const bool block = (node_.IsMap() || node_.IsSequence()) &&
+                     node_.Style() == YAML::EmitterStyle::Block && !key_mark_.is_null();
+  return locate(*document_, path_, block ? key_mark_ : node_.Mark());
 }
 
 std::string ConfigNode::parameter_path() const {
@@ -529,7 +531,10 @@ ConfigNode ConfigNode::at(std::string_view key) const {
   const std::string path = child_path(key);
   document_->consumed.insert(path);
   const YAML::Node& node = node_;
-  return child(node[std::string(key)], path);
+  ConfigNode found = child(node[std::string(key)], path);
+  for (const auto& entry : node)
+    if (entry.first.IsScalar() && entry.first.Scalar() == key) found.key_mark_ = entry.first.Mark();
+  return found;
 }
 
 std::optional<ConfigNode> ConfigNode::find(std::string_view key) const {

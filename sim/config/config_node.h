@@ -168,6 +168,9 @@ class ConfigNode {
   std::shared_ptr<ConfigDocument> document_;
   YAML::Node node_;
   std::string path_;
+  // Where the key of this node stands (null for the root and list elements): a block mapping or
+  // list starts on the line after its key, and is reported at the key.
+  YAML::Mark key_mark_ = YAML::Mark::null_mark();
 };
 
 // A --set path whose first key is not a section of the document but an instance of exactly

@@ -228,7 +228,7 @@ contains "$work/err" "the first failure: the residual of load.force against the 
 printf 'sweep: {name: huge}\nscenario: %s\naxes:\n  - {parameter: muscle.thermal.conductance, range: {from: 1 W/K, to: 2 W/K, count: 1000}}\n  - {parameter: muscle.thermal.heat_capacity, range: {from: 1 J/K, to: 2 J/K, count: 1000}}\n  - {parameter: muscle.mechanics.k1, range: {from: 1 N/m, to: 2 N/m, count: 1000}}\n' \
   "$source_dir/configs/sweeps/thermal_step.yaml" >"$work/huge_sweep.yaml"
 expect 3 "a sweep of 1e9 runs is a configuration error" -- "$tcpmsim" sweep "$work/huge_sweep.yaml" -o "$work/huge.h5"
-contains "$work/err" "huge_sweep.yaml:4:3: error: axes: the axes make 1000 x 1000 x 1000 = 1e+09 runs, over the limit of 1e+06 runs a sweep" "the sweep's size is refused with the product and the cap"
+contains "$work/err" "huge_sweep.yaml:3:1: error: axes: the axes make 1000 x 1000 x 1000 = 1e+09 runs, over the limit of 1e+06 runs a sweep" "the sweep's size is refused with the product and the cap"
 [[ ! -e $work/huge.h5 && ! -e $work/huge.h5.partial ]] && echo "ok: no sweep file after the size error" || { echo "FAIL: a sweep file after the size error"; failures=$((failures + 1)); }
 # Issue 31: an output path that cannot be a file is refused before any work, as run refuses it.
 mkdir "$work/outdir"
