@@ -443,9 +443,13 @@ const UnitSystem& ConfigNode::units() const {
 }
 
 SourceLocation ConfigNode::location() const {
-  const bool block = (node_.IsMap() || node_.IsSequence()) &&
-                     node_.Style() == YAML::EmitterStyle::Block && !key_mark_.is_null();
-  return locate(*document_, path_, block ? key_mark_ : node_.Mark());
+  if ((node_.IsMap() || node_.IsSequence()) && node_.Style() == YAML::EmitterStyle::Block &&
+      parent_.IsMap()) {
+    for (const auto& entry : parent_)
+      if (entry.first.IsScalar() && entry.first.Scalar() == key_)
+        return locate(*document_, path_, entry.first.Mark());
+  }
+  return locate(*document_, path_, node_.Mark());
 }
 
 std::string ConfigNode::parameter_path() const {
@@ -532,8 +536,8 @@ ConfigNode ConfigNode::at(std::string_view key) const {
   document_->consumed.insert(path);
   const YAML::Node& node = node_;
   ConfigNode found = child(node[std::string(key)], path);
-  for (const auto& entry : node)
-    if (entry.first.IsScalar() && entry.first.Scalar() == key) found.key_mark_ = entry.first.Mark();
+  found.parent_.reset(node_);  // rebinds the handle (operator= would assign the value)
+  found.key_ = key;
   return found;
 }
 

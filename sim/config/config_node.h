@@ -168,9 +168,11 @@ class ConfigNode {
   std::shared_ptr<ConfigDocument> document_;
   YAML::Node node_;
   std::string path_;
-  // Where the key of this node stands (null for the root and list elements): a block mapping or
-  // list starts on the line after its key, and is reported at the key.
-  YAML::Mark key_mark_ = YAML::Mark::null_mark();
+  // The mapping this node is the value of, and its key (none for the root and list elements):
+  // a block mapping or list starts on the line after its key, and is reported at the key, found
+  // when a location is asked for.
+  YAML::Node parent_;
+  std::string key_;
 };
 
 // A --set path whose first key is not a section of the document but an instance of exactly
