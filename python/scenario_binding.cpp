@@ -29,6 +29,20 @@ std::string override_text(const py::handle& value) {
                        py::repr(value).cast<std::string>());
 }
 
+// A value for Scenario.set: a plain number for a model parameter is in SI, as Context, the
+// Simulator and the parameters dict give it ("muscle.mechanics.k2", 3.0 is 3 N/m); anything
+// else as override_text reads it.
+std::string set_text(const Scenario& scenario, const std::string& path, const py::handle& value) {
+  const bool number = !py::isinstance<py::bool_>(value) &&
+                      (py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value));
+  const auto index = scenario.system->parameter_index(path);
+  if (!number || !index) return override_text(value);
+  const std::string& unit =
+      scenario.system->parameters()[static_cast<std::size_t>(*index)].declaration.unit;
+  const std::string text = override_text(value);
+  return unit.empty() || unit == "1" ? text : text + " " + unit;
+}
+
 // A run's duration or output rate: a number (in s, in Hz) or a text with its unit.
 std::vector<std::string> run_overrides(const py::object& duration, const py::object& rate) {
   std::vector<std::string> overrides;
@@ -196,12 +210,13 @@ void bind_scenario(py::module_& module) {
       .def(
           "set",
           [](PyScenario& self, const std::string& path, const py::object& value) -> PyScenario& {
-            self.set(path, override_text(value));
+            self.set(path, set_text(self.scenario(), path, value));
             return self;
           },
           py::arg("path"), py::arg("value"),
-          "Sets a value as --set does (\"muscle.mechanics.k2\", \"3 mN/mm\"); returns the "
-          "scenario.",
+          "Sets a value as --set does (\"muscle.mechanics.k2\", \"3 mN/mm\"); a plain number for "
+          "a model parameter is in SI (3.0 is 3 N/m), as Scenario.parameters gives it. Returns "
+          "the scenario.",
           py::return_value_policy::reference_internal)
       .def(
           "validate", [](PyScenario& self) -> PyScenario& { return self; },

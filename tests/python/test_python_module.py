@@ -89,6 +89,22 @@ class PythonRunsAreCommandLineRuns(unittest.TestCase):
             for channel in result.channels[1:]:
                 self.assertTrue(same_bits(record[channel][()], result[channel]), channel)
 
+    def test_a_plain_number_set_on_a_parameter_is_si(self):
+        # As Scenario.parameters and the Simulator give it: 3.0 for k2 is 3 N/m (= 3 mN/mm),
+        # the same run bit for bit; a dimensionless parameter and a count stay plain numbers.
+        with_unit = tcpmsim.Scenario.from_yaml(CONFIGS[0]).set("muscle.mechanics.k2", "3 mN/mm")
+        plain = tcpmsim.Scenario.from_yaml(CONFIGS[0]).set("muscle.mechanics.k2", 3.0)
+        self.assertEqual(plain.parameters["muscle.mechanics.k2"], 3.0)
+        self.assertEqual(plain.overrides, ["muscle.mechanics.k2=3.0 N/m"])
+        self.assertTrue(same_bits(plain.run(duration=20)["muscle/force"],
+                                  with_unit.run(duration=20)["muscle/force"]))
+        # A negative SI value is refused as the command line refuses it, with the unit shown.
+        with self.assertRaisesRegex(tcpmsim.ConfigError, "got '-3.0 N/m'"):
+            plain.set("muscle.mechanics.k2", -3.0)
+        # A path that is not a model parameter keeps the number as it is.
+        self.assertEqual(tcpmsim.Scenario.from_yaml(CONFIGS[0]).set("scenario.seed", 5).overrides,
+                         ["scenario.seed=5"])
+
     def test_yaml_text_runs_as_its_file_does(self):
         with open(CONFIGS[0]) as file:
             text = file.read()
