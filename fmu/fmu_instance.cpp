@@ -32,8 +32,8 @@ fmi2Status FmuInstance::report(fmi2Status status, const std::string& message) co
     const char* category =
         status >= fmi2Error ? "logError" : (status == fmi2Warning ? "logWarning" : "logInfo");
     // The message as the format, its '%' doubled, and no arguments: importers that format it
-    // (FMPy, Simulink) and those that print it as it is (a ctypes logger that cannot read C
-    // varargs) show the same text.
+    // (FMPy, Simulink) show the message, and those that print the format as it is (a ctypes
+    // logger cannot read C varargs) show it too, a '%' doubled.
     std::string format;
     for (const char c : message) format += c == '%' ? std::string("%%") : std::string(1, c);
     callbacks_.logger(callbacks_.componentEnvironment, name_.c_str(), status, category,
