@@ -19,10 +19,15 @@ namespace tcpmsim {
 // offset, averaged over 30 s), then the task with both offsets applied.
 // What the control-task analysis finds in one task (single muscle or pair).
 struct TaskAnalysis {
-  std::vector<StepRise> rises;                   // step tasks
+  std::vector<StepRise> rises;  // step tasks
+  // Per step: the largest excursion beyond the new reference, away from the old, over the
+  // step's hold, as a fraction of the reference's change (overshoot_fraction); NaN for a step
+  // at the first sample.
+  std::vector<double> overshoots;
   std::vector<FrequencyResponsePoint> response;  // sweep tasks
   std::optional<double> bandwidth;               // [Hz]
   std::vector<double> estimation_errors;         // of the controlled quantity, over the task
+  std::vector<double> tracking_errors;           // truth - reference, over the task
 };
 
 struct ControlTaskResult : TaskAnalysis {

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "analysis/control_tasks.h"
+#include "analysis/step_response.h"
 #include "signals/control_task_signals.h"
 #include "sim/run.h"
 
@@ -42,6 +44,20 @@ void analyse_task(const MemoryRecord& record, const Signal& reference,
                reference, analysis);
 }
 
+namespace {
+
+// A step's overshoot against its reference (TaskAnalysis::overshoots), over its hold.
+double overshoot(const StepRise& rise, std::span<const double> time,
+                 std::span<const double> reference, std::span<const double> truth) {
+  if (rise.index == 0) return std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> held;
+  for (std::size_t k = rise.index; k < time.size() && time[k] < rise.step_time + rise.hold; ++k)
+    held.push_back(truth[k]);
+  return overshoot_fraction(held, reference[rise.index - 1], rise.target);
+}
+
+}  // namespace
+
 void analyse_task(std::span<const double> time, std::span<const double> reference_samples,
                   std::span<const double> truth, std::span<const double> estimate,
                   const Signal& reference, TaskAnalysis& analysis) {
@@ -53,14 +69,16 @@ void analyse_task(std::span<const double> time, std::span<const double> referenc
     t.push_back(time[k]);
     r.push_back(reference_samples[k]);
     y.push_back(truth[k]);
-    if (!estimate.empty() && time[k] >= start - 1e-9)
-      analysis.estimation_errors.push_back(estimate[k] - y.back());
+    if (time[k] < start - 1e-9) continue;
+    analysis.tracking_errors.push_back(y.back() - r.back());
+    if (!estimate.empty()) analysis.estimation_errors.push_back(estimate[k] - y.back());
   }
   if (const auto* sweep = dynamic_cast<const SteppedSineSignal*>(&reference)) {
     analysis.response = sweep_frequency_response(t, r, y, sweep->schedule());
     analysis.bandwidth = bandwidth_3db(analysis.response);
   } else {
     analysis.rises = step_rise_times(t, r, y);
+    for (const auto& rise : analysis.rises) analysis.overshoots.push_back(overshoot(rise, t, r, y));
   }
 }
 

@@ -3,15 +3,12 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
-#include <algorithm>
-#include <limits>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "analysis/control_tasks.h"
 #include "analysis/record_channels.h"
-#include "analysis/step_response.h"
 #include "analysis/task_runs.h"
 #include "python/bindings.h"
 #include "sim/config/config_error.h"
@@ -36,30 +33,15 @@ py::dict statistics_dict(const std::vector<double>& errors) {
   return result;
 }
 
-// Each step's overshoot as a controller is judged by it: the largest excursion beyond the new
-// reference, away from the old, over the step's hold, as a fraction of the reference's change.
-double reference_overshoot(const StepRise& rise, std::span<const double> time,
-                           std::span<const double> reference, std::span<const double> truth) {
-  const auto first = static_cast<std::size_t>(
-      std::lower_bound(time.begin(), time.end(), rise.step_time) - time.begin());
-  if (first == 0) return std::numeric_limits<double>::quiet_NaN();
-  std::vector<double> held;
-  for (std::size_t k = first; k < time.size() && time[k] < rise.step_time + rise.hold; ++k)
-    held.push_back(truth[k]);
-  return overshoot_fraction(held, reference[first - 1], rise.target);
-}
-
-py::dict rises_dict(const std::vector<StepRise>& rises, std::span<const double> time,
-                    std::span<const double> reference, std::span<const double> truth) {
-  std::vector<double> step_time, target, start, rise_time, overshoot;
+py::dict rises_dict(const TaskAnalysis& analysis) {
+  std::vector<double> step_time, target, start, rise_time;
   std::vector<bool> reached;
-  for (const auto& rise : rises) {
+  for (const auto& rise : analysis.rises) {
     step_time.push_back(rise.step_time);
     target.push_back(rise.target);
     start.push_back(rise.start);
     rise_time.push_back(rise.rise_time);
     reached.push_back(rise.reached);
-    overshoot.push_back(reference_overshoot(rise, time, reference, truth));
   }
   py::dict result;
   result["step_time"] = array_of(step_time);
@@ -67,7 +49,7 @@ py::dict rises_dict(const std::vector<StepRise>& rises, std::span<const double> 
   result["start"] = array_of(start);
   result["rise_time"] = array_of(rise_time);
   result["reached"] = reached;
-  result["overshoot"] = array_of(overshoot);
+  result["overshoot"] = array_of(analysis.overshoots);
   return result;
 }
 
@@ -124,22 +106,15 @@ py::dict control_task(const PyResult& result, const std::string& reference, cons
     const py::gil_scoped_release released;
     analyse_task(channels.time, r.values, y.values, estimated, signal, analysis);
   }
-  // The tracking error y - r over the task: from the reference's first change on.
-  const double start = signal.next_breakpoint_after(0.0);
-  std::vector<double> tracking;
-  for (std::size_t k = 0; k < channels.time.size(); ++k)
-    if (channels.time[k] >= start - 1e-9) tracking.push_back(y.values[k] - r.values[k]);
-
   py::dict task;
   task["reference"] = reference;
   task["truth"] = truth_channel;
   task["unit"] = r.unit;
-  task["start"] = start;
-  if (!analysis.rises.empty())
-    task["steps"] = rises_dict(analysis.rises, channels.time, r.values, y.values);
+  task["start"] = signal.next_breakpoint_after(0.0);  // the reference's first change
+  if (!analysis.rises.empty()) task["steps"] = rises_dict(analysis);
   if (!analysis.response.empty()) task["response"] = response_dict(analysis);
   task["bandwidth"] = analysis.bandwidth ? py::cast(*analysis.bandwidth) : py::none();
-  task["tracking_error"] = statistics_dict(tracking);
+  task["tracking_error"] = statistics_dict(analysis.tracking_errors);
   if (!analysis.estimation_errors.empty()) {
     task["estimate"] = estimate_channel;
     task["estimation_error"] = statistics_dict(analysis.estimation_errors);
