@@ -13,6 +13,7 @@
 #include "fmu/fmu_resources.h"
 #include "fmu/model_description.h"
 #include "kinds/standard_kinds.h"
+#include "sim/io/hdf5_files.h"
 
 namespace tcpmsim::fmu {
 namespace {
@@ -92,6 +93,7 @@ FmuInterface export_fmu(const FmuExportRequest& request, std::shared_ptr<const U
   if (!std::filesystem::is_regular_file(request.library))
     throw std::runtime_error("no FMU library at " + request.library +
                              " (build the target tcpmsim_fmu, or give --library)");
+  check_output_path(request.output);  // before any work, as every command's output
   const Scenario scenario = load_scenario(request.scenario_file, request.overrides, units);
   if (!scenario.parameter_settings.empty()) {
     // A --set of a parameter lives in the run context, not in the resolved YAML the FMU carries.

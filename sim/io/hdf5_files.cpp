@@ -26,7 +26,7 @@ void create_parent_directories(const std::string& path) {
   if (error) throw std::runtime_error("cannot write " + path + ": " + error.message());
 }
 
-void prepare_output_file(const std::string& path) {
+void check_output_path(const std::string& path) {
   std::error_code error;
   const auto status = std::filesystem::status(path, error);
   if (std::filesystem::is_directory(status)) {
@@ -37,6 +37,10 @@ void prepare_output_file(const std::string& path) {
                              ": it exists and is not a regular file (a device, pipe or socket)");
   }
   create_parent_directories(path);
+}
+
+void prepare_output_file(const std::string& path) {
+  check_output_path(path);
   const std::string partial = partial_path(path);
   std::FILE* probe = std::fopen(partial.c_str(), "wb");
   if (!probe) {

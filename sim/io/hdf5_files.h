@@ -24,10 +24,14 @@ std::string partial_path(const std::string& path);
 // Creates the directories above `path`; a failure is a std::runtime_error naming `path`.
 void create_parent_directories(const std::string& path);
 
-// Makes sure a file can be written at `path` through its partial file, before any work: `path`
-// must be a regular file or not exist (a directory or a device is refused), its directories are
-// created, and the partial file is created empty. A failure is a std::runtime_error naming the
-// file concerned and the system's reason ("Permission denied").
+// Checks, before any work, that a file can be put at `path`: it must be a regular file or not
+// exist (a directory or a device is refused), and its directories are created. A failure is a
+// std::runtime_error naming `path` and the reason.
+void check_output_path(const std::string& path);
+
+// Makes sure a file can be written at `path` through its partial file, before any work:
+// check_output_path, then the partial file is created empty. A failure is a std::runtime_error
+// naming the file concerned and the system's reason ("Permission denied").
 void prepare_output_file(const std::string& path);
 
 // Variable-length UTF-8 text, the type of every string the records and reports write.

@@ -8,6 +8,7 @@
 #include <zip.h>
 #include <catch2/catch.hpp>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -259,6 +260,23 @@ TEST_CASE("Every shipped scenario with an external input exports with all its ou
   CHECK(run_program("export-fmu " + source("configs/ch7_control/force_steps.yaml") + " -o " +
                     (scratch("none") / "x.fmu").string() + " 2> /dev/null") != 0);
   CHECK_FALSE(fs::exists(scratch("none") / "x.fmu"));
+}
+
+TEST_CASE(
+    "The FMU's path is checked before any work: its directories are made, a directory is "
+    "refused") {
+  const fs::path nested = scratch("nested") / "new" / "deeper" / "muscle.fmu";
+  CHECK(run_program("export-fmu " + source("configs/ch7_control/external_force.yaml") + " -o " +
+                    nested.string()) == 0);
+  CHECK(fs::is_regular_file(nested));
+  // Exit code 4 (output), with the reason, and no scratch directory left beside it.
+  const fs::path directory = scratch("a_directory");
+  const fs::path message = scratch("message") / "message.txt";
+  const int status = run_program("export-fmu " + source("configs/ch7_control/external_force.yaml") +
+                                 " -o " + directory.string() + " 2> " + message.string());
+  CHECK(WEXITSTATUS(status) == 4);
+  CHECK(file_text(message).find("it is a directory") != std::string::npos);
+  CHECK(std::distance(fs::directory_iterator(directory), fs::directory_iterator()) == 0);
 }
 
 TEST_CASE("The rules checker finds what breaks FMI 2.0 in a description") {
