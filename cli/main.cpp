@@ -56,6 +56,7 @@ struct Options {
   std::string output;
   std::vector<std::string> overrides;
   bool quiet = false;
+  bool strict = false;  // run, validate: warnings (implausible values) are errors
   bool markdown = false;
   bool discover_families = false;  // kinds: only discover's families
   tcpmsim::analysis::CoilFitOptions coil_fit;
@@ -79,6 +80,17 @@ struct Options {
   tcpmsim::cli::ExportFmuOptions export_fmu;
 };
 
+// Prints the scenario's warnings (values outside their typical range) to stderr; with --strict
+// they are errors, and the command ends with the configuration error's code before any work.
+bool warnings_stop(const tcpmsim::Scenario& scenario, const Options& options) {
+  for (const auto& warning : scenario.warnings) std::cerr << warning << "\n";
+  if (!options.strict || scenario.warnings.empty()) return false;
+  std::cerr << "tcpmsim: --strict: " << scenario.warnings.size()
+            << (scenario.warnings.size() == 1 ? " warning is an error\n"
+                                              : " warnings are errors\n");
+  return true;
+}
+
 tcpmsim::Scenario load(const Options& options) {
   return tcpmsim::load_scenario(options.config, options.overrides,
                                 std::make_shared<tcpmsim::UnitSystem>());
@@ -86,6 +98,7 @@ tcpmsim::Scenario load(const Options& options) {
 
 int validate(const Options& options) {
   tcpmsim::Scenario scenario = load(options);
+  if (warnings_stop(scenario, options)) return kConfigError;
   std::cout << options.config << ": valid scenario '" << scenario.settings.name << "', "
             << scenario.settings.duration << " s, " << scenario.system->state_size() << " states, "
             << std::count_if(scenario.system->channels().begin(), scenario.system->channels().end(),
@@ -155,6 +168,7 @@ int run(const Options& options) {
   if (options.configs.size() > 1) return run_batch(options);
   tcpmsim::Scenario scenario = tcpmsim::load_scenario(options.configs.front(), options.overrides,
                                                       std::make_shared<tcpmsim::UnitSystem>());
+  if (warnings_stop(scenario, options)) return kConfigError;
   scenario.invocation = options.invocation;
   tcpmsim::check_record_size(scenario, static_cast<double>(options.max_output_bytes));
   const std::string output =
@@ -540,6 +554,8 @@ int main(int argc, char** argv) {
   run_command->add_option("-o,--output", options.output,
                           "Output file (default: results/<scenario name>.h5)");
   run_command->add_flag("-q,--quiet", options.quiet, "No progress line or summary");
+  run_command->add_flag("--strict", options.strict,
+                        "Values outside their typical range are errors, not warnings");
   run_command
       ->add_option("--max-output-size", options.max_output_bytes,
                    "Refuse a record larger than this before running, uncompressed (e.g. 500MB, "
@@ -558,12 +574,14 @@ int main(int argc, char** argv) {
   CLI::App* validate_command =
       app.add_subcommand("validate", "Check a scenario file and list its states and outputs");
   add_common(*validate_command, options);
+  validate_command->add_flag("--strict", options.strict,
+                             "Values outside their typical range are errors, not warnings");
 
   bool markdown = false;
   bool families = false;
   CLI::App* kinds_command = app.add_subcommand(
       "kinds", "List every kind of component and signal a scenario may name, with its keys");
-  kinds_command->add_flag("--markdown", markdown, "Markdown tables (docs/kinds.md)");
+  kinds_command->add_flag("--markdown", markdown, "Markdown tables (docs/reference/kinds.md)");
   kinds_command->add_flag("--discover-families", families,
                           "Only the effect families discover tries, one per line, in its order "
                           "(as the kinds declare them)");

@@ -1,4 +1,5 @@
 #include "controllers/joule_drive.h"
+#include "models/typical_values.h"
 
 #include <cmath>
 
@@ -59,7 +60,7 @@ std::unique_ptr<JouleDrive> JouleDrive::from_config(const std::string& group,
   const std::string mode = node.choice("mode", {"power", "duty", "current"});
   p.mode = mode == "duty" ? Mode::duty : mode == "current" ? Mode::current : Mode::power;
   if (p.mode == Mode::duty) {
-    bind.quantity(node, "supply_voltage", "V", ValueCheck::positive(), p,
+    bind.quantity(node, "supply_voltage", "V", typical::supply_voltage(ValueCheck::positive()), p,
                   bind.member(&P::supply_voltage));
     bind.quantity(node, "series_resistance", "ohm", ValueCheck::non_negative(), p,
                   bind.member(&P::series_resistance));

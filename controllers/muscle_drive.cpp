@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "models/typical_values.h"
 #include "sim/context.h"
 #include "sim/time_grid.h"
 
@@ -76,7 +77,7 @@ std::unique_ptr<MuscleDrive> MuscleDrive::from_config(const std::string& group,
                    : MuscleDriveParameters::Fidelity::averaged;
   bind.quantity_or(node, "pwm_frequency", "Hz", 20.0, ValueCheck::positive(), p,
                    bind.member(&MuscleDriveParameters::pwm_frequency));
-  bind.quantity(node, "supply_voltage", "V", ValueCheck::positive(), p,
+  bind.quantity(node, "supply_voltage", "V", typical::supply_voltage(ValueCheck::positive()), p,
                 bind.member(&MuscleDriveParameters::supply_voltage));
   bind.quantity(node, "series_resistance", "ohm", ValueCheck::non_negative(), p,
                 bind.member(&MuscleDriveParameters::series_resistance));

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "models/sls_mechanics.h"
+#include "models/typical_values.h"
 #include "sim/context.h"
 
 namespace tcpmsim {
@@ -93,9 +94,9 @@ std::unique_ptr<SelfSensingEstimator> SelfSensingEstimator::from_config(
 
   const ConfigNode thermal = node.at("thermal");
   thermal.declare({"kappa_P", "kappa_c", "initial_thermal_force"});
-  bind.quantity(thermal, "kappa_P", "N/J", ValueCheck::positive(), p,
+  bind.quantity(thermal, "kappa_P", "N/J", typical::heating_gain(ValueCheck::positive()), p,
                 bind.member(&P::heating_gain));
-  bind.quantity(thermal, "kappa_c", "1/s", ValueCheck::positive(), p,
+  bind.quantity(thermal, "kappa_c", "1/s", typical::cooling_rate(ValueCheck::positive()), p,
                 bind.member(&P::cooling_rate));
   bind.quantity_or(thermal, "initial_thermal_force", "N", 0.0, {}, p,
                    bind.member(&P::initial_thermal_force));

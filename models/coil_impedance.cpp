@@ -1,4 +1,5 @@
 #include "models/coil_impedance.h"
+#include "models/typical_values.h"
 
 namespace tcpmsim {
 
@@ -42,7 +43,7 @@ void read_resistance(const ConfigNode& node, CoilImpedanceParameters& p,
   const std::string form = node.choice("form", {"linear", "thermal"});
   if (form == "thermal") {
     p.resistance_form = CoilImpedanceParameters::ResistanceForm::thermal;
-    bind.quantity(node, "resistance", "ohm", ValueCheck::positive(), p,
+    bind.quantity(node, "resistance", "ohm", typical::resistance(ValueCheck::positive()), p,
                   bind.member(&CoilImpedanceParameters::thermal_resistance));
     bind.quantity(node, "temperature_coefficient", "1/K", {}, p,
                   bind.member(&CoilImpedanceParameters::temperature_coefficient));

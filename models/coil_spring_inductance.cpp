@@ -4,6 +4,7 @@
 #include <tuple>
 
 #include "models/inductance/loop_mutual.h"
+#include "models/typical_values.h"
 #include "sim/context.h"
 #include "sim/value_check.h"
 
@@ -96,9 +97,9 @@ std::unique_ptr<CoilSpringInductance> CoilSpringInductance::from_config(
   p.windings = chain.windings;
   p.rest_length = chain.rest_length;
   p.stiffness = chain.stiffness;
-  bind.quantity(node, "coil_radius", "m", ValueCheck::positive(), p,
+  bind.quantity(node, "coil_radius", "m", typical::coil_radius(ValueCheck::positive()), p,
                 bind.member(&CoilSpringInductanceParameters::coil_radius));
-  bind.quantity(node, "wire_diameter", "m", ValueCheck::positive(), p,
+  bind.quantity(node, "wire_diameter", "m", typical::wire_diameter(ValueCheck::positive()), p,
                 bind.member(&CoilSpringInductanceParameters::wire_diameter));
   bind.interval(node, "operating_range", "m", ValueCheck::positive(), p,
                 bind.member(&CoilSpringInductanceParameters::shortest_length),

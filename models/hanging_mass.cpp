@@ -1,4 +1,5 @@
 #include "models/hanging_mass.h"
+#include "models/typical_values.h"
 
 namespace tcpmsim {
 
@@ -12,7 +13,8 @@ std::unique_ptr<HangingMass> HangingMass::from_config(
   using P = HangingMassParameters;
   P p;
   ParameterBindings<P> bind;
-  bind.quantity(node, "mass", "kg", ValueCheck::positive(), p, bind.member(&P::mass));
+  bind.quantity(node, "mass", "kg", typical::mass(ValueCheck::positive()), p,
+                bind.member(&P::mass));
   bind.quantity_or(node, "gravity", "m/s^2", p.gravity, ValueCheck::non_negative(), p,
                    bind.member(&P::gravity));
   bind.quantity_or(node, "damping", "N*s/m", 0.0, ValueCheck::non_negative(), p,

@@ -1,4 +1,5 @@
 #include "models/sls_mechanics.h"
+#include "models/typical_values.h"
 
 #include <algorithm>
 
@@ -15,10 +16,14 @@ SlsParameters SlsMechanics::read(const ConfigNode& node,
   P p;
   ParameterBindings<P> local;
   ParameterBindings<P>& bind = bindings ? *bindings : local;
-  bind.quantity(node, "k1", "N/m", ValueCheck::positive(), p, bind.member(&P::k1));
-  bind.quantity(node, "k2", "N/m", ValueCheck::non_negative(), p, bind.member(&P::k2));
-  bind.quantity(node, "damping", "N*s/m", ValueCheck::positive(), p, bind.member(&P::damping));
-  bind.quantity(node, "force_offset", "N", {}, p, bind.member(&P::force_offset));
+  bind.quantity(node, "k1", "N/m", typical::stiffness(ValueCheck::positive()), p,
+                bind.member(&P::k1));
+  bind.quantity(node, "k2", "N/m", typical::added_stiffness(ValueCheck::non_negative()), p,
+                bind.member(&P::k2));
+  bind.quantity(node, "damping", "N*s/m", typical::damping(ValueCheck::positive()), p,
+                bind.member(&P::damping));
+  bind.quantity(node, "force_offset", "N", typical::force_offset({}), p,
+                bind.member(&P::force_offset));
   return p;
 }
 

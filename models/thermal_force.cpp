@@ -1,4 +1,5 @@
 #include "models/thermal_force.h"
+#include "models/typical_values.h"
 
 namespace tcpmsim {
 
@@ -13,8 +14,9 @@ std::unique_ptr<PhysicalThermalForce> PhysicalThermalForce::from_config(const st
   node.declare({"form", "force_per_kelvin", "reference_temperature"});
   P p;
   ParameterBindings<P> bind;
-  bind.quantity(node, "force_per_kelvin", "N/K", {}, p, bind.member(&P::force_per_kelvin));
-  bind.quantity(node, "reference_temperature", "K", ValueCheck::positive(), p,
+  bind.quantity(node, "force_per_kelvin", "N/K", typical::force_per_kelvin({}), p,
+                bind.member(&P::force_per_kelvin));
+  bind.quantity(node, "reference_temperature", "K", typical::temperature(ValueCheck::positive()), p,
                 bind.member(&P::reference_temperature));
   return std::make_unique<PhysicalThermalForce>(group, p, std::move(bind));
 }
@@ -38,9 +40,11 @@ std::unique_ptr<ReducedThermalForce> ReducedThermalForce::from_config(const std:
                 "initial_thermal_force"});
   P p;
   ParameterBindings<P> bind;
-  bind.quantity(node, "kappa_P", "N/J", {}, p, bind.member(&P::heating_gain));
-  bind.quantity(node, "kappa_c", "1/s", ValueCheck::positive(), p, bind.member(&P::cooling_rate));
-  bind.quantity(node, "ambient_temperature", "K", ValueCheck::positive(), p,
+  bind.quantity(node, "kappa_P", "N/J", typical::heating_gain({}), p,
+                bind.member(&P::heating_gain));
+  bind.quantity(node, "kappa_c", "1/s", typical::cooling_rate(ValueCheck::positive()), p,
+                bind.member(&P::cooling_rate));
+  bind.quantity(node, "ambient_temperature", "K", typical::temperature(ValueCheck::positive()), p,
                 bind.member(&P::ambient_temperature));
   if (auto phi = node.find("force_per_kelvin")) {
     p.force_per_kelvin = 0.0;

@@ -1,4 +1,5 @@
 #include "models/thermal_node.h"
+#include "models/typical_values.h"
 
 namespace tcpmsim {
 
@@ -20,16 +21,16 @@ std::unique_ptr<ThermalNode> ThermalNode::from_config(const std::string& group,
                 "radiation", "initial_temperature", "energy_accounting"});
   ThermalNodeParameters p;
   ParameterBindings<ThermalNodeParameters> bind;
-  bind.quantity(node, "heat_capacity", "J/K", ValueCheck::positive(), p,
+  bind.quantity(node, "heat_capacity", "J/K", typical::heat_capacity(ValueCheck::positive()), p,
                 bind.member(&ThermalNodeParameters::heat_capacity));
-  bind.quantity(node, "conductance", "W/K", ValueCheck::non_negative(), p,
+  bind.quantity(node, "conductance", "W/K", typical::conductance(ValueCheck::non_negative()), p,
                 bind.member(&ThermalNodeParameters::conductance));
   bind.quantity_or(node, "heating_efficiency", "1", 1.0, ValueCheck::fraction(), p,
                    bind.member(&ThermalNodeParameters::heating_efficiency));
   if (auto radiation = node.find("radiation")) {
     bind.quantity(*radiation, "emissivity", "1", ValueCheck::fraction(), p,
                   bind.member(&ThermalNodeParameters::emissivity));
-    bind.quantity(*radiation, "area", "m^2", ValueCheck::positive(), p,
+    bind.quantity(*radiation, "area", "m^2", typical::radiating_area(ValueCheck::positive()), p,
                   bind.member(&ThermalNodeParameters::radiating_area));
   }
   if (auto initial = node.find("initial_temperature")) {

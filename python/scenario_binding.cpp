@@ -101,6 +101,14 @@ py::dict parameter_values(const Scenario& scenario) {
   return values;
 }
 
+// A value outside its typical range, as Python's warnings show it (`warnings.simplefilter(
+// "error")` makes it an exception, as --strict does).
+void warn_implausible(const Scenario& scenario) {
+  for (const auto& warning : scenario.warnings)
+    py::module_::import("warnings")
+        .attr("warn")(warning, py::module_::import("builtins").attr("UserWarning"), 3);
+}
+
 }  // namespace
 
 PyScenario::PyScenario(std::string source, bool is_text, std::vector<std::string> overrides)
@@ -109,6 +117,7 @@ PyScenario::PyScenario(std::string source, bool is_text, std::vector<std::string
       overrides_(std::move(overrides)),
       units_(std::make_shared<UnitSystem>()) {
   scenario_ = load(overrides_);
+  warn_implausible(*scenario_);
 }
 
 PyScenario PyScenario::from_file(const std::string& path, std::vector<std::string> overrides) {
@@ -128,7 +137,9 @@ std::shared_ptr<const Scenario> PyScenario::load(const std::vector<std::string>&
 void PyScenario::set(const std::string& path, const std::string& value) {
   std::vector<std::string> overrides = overrides_;
   overrides.push_back(path + "=" + value);
-  scenario_ = load(overrides);  // throws before anything changes
+  auto scenario = load(overrides);  // throws before anything changes
+  warn_implausible(*scenario);
+  scenario_ = std::move(scenario);
   overrides_ = std::move(overrides);
 }
 
@@ -254,6 +265,10 @@ void bind_scenario(py::module_& module) {
       .def_property_readonly("config",
                              [](const PyScenario& self) { return self.scenario().resolved_yaml; })
       .def_property_readonly("overrides", &PyScenario::overrides)
+      .def_property_readonly(
+          "warnings", [](const PyScenario& self) { return self.scenario().warnings; },
+          "Values outside their typical range, located as the command line prints them (each "
+          "also raised as a UserWarning when the scenario is read or set).")
       .def_property_readonly(
           "parameters", [](const PyScenario& self) { return parameter_values(self.scenario()); },
           "Every model parameter by path, as a run takes it, in SI.")

@@ -211,6 +211,7 @@ Scenario build_scenario(const ConfigNode& root, const KindRegistry& kinds) {
   scenario.solver = read_solver(root, *scenario.system);
   root.reject_unknown_keys(variant_keys(kinds, root.shared_units()));
   scenario.resolved_yaml = root.resolved_yaml();
+  scenario.warnings = root.warnings();
   return scenario;
 }
 
@@ -263,6 +264,7 @@ Scenario load_scenario_text(const std::string& text, const std::string& name,
     }
     if (!consistent) continue;
     scenario.resolved_yaml = complete.resolved_yaml;
+    scenario.warnings = complete.warnings;  // the --set values' too
     scenario.source = name;
     // A value the model as built cannot take in a run (one that changes its structure, such
     // as damping where the spring was built undamped) is built into the model instead.

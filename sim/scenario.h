@@ -26,6 +26,9 @@ struct Scenario {
   std::vector<std::pair<std::string, double>> parameter_settings;
   std::string source;         // the file it came from
   std::string resolved_yaml;  // as read, with overrides and defaults
+  // Values outside their typical range, located ("file:line:col: warning: key: ..."); the
+  // command line prints them, and --strict makes them errors.
+  std::vector<std::string> warnings;
   // The command line (or the Python call) that runs it, written into its record; empty: not
   // known (a library call).
   std::string invocation;

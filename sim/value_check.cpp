@@ -40,6 +40,49 @@ ValueCheck ValueCheck::fraction() {
   return between(0.0, 1.0);
 }
 
+ValueCheck ValueCheck::typical(double lower, double upper) const {
+  ValueCheck check = *this;
+  check.typical_lower_ = lower;
+  check.typical_upper_ = upper;
+  return check;
+}
+
+bool ValueCheck::has_typical_range() const {
+  return std::isfinite(typical_lower_) || std::isfinite(typical_upper_);
+}
+
+std::string ValueCheck::typical_text(std::string_view unit) const {
+  if (!has_typical_range()) return {};
+  const std::string in_unit = unit.empty() || unit == "1" ? "" : " " + std::string(unit);
+  return "typically " + number_text(typical_lower_) + " to " + number_text(typical_upper_) +
+         in_unit;
+}
+
+std::string ValueCheck::implausibility(double value, std::string_view unit,
+                                       const std::string& shown) const {
+  if (!has_typical_range() || (value >= typical_lower_ && value <= typical_upper_)) return {};
+  const std::string in_unit = unit.empty() || unit == "1" ? "" : " " + std::string(unit);
+  std::string message = shown + " is " + number_text(value) + in_unit +
+                        ", outside the typical range (" + number_text(typical_lower_) + " to " +
+                        number_text(typical_upper_) + in_unit +
+                        ") of the muscles and springs tcpmsim models";
+  // The slips a value suffers most: a unit's prefix (1000, a million), centimetres (100).
+  struct Slip {
+    double factor;
+    const char* words;
+  };
+  for (const Slip slip :
+       {Slip{1e3, "1/1000 of it"}, Slip{1e-3, "1000 times it"}, Slip{1e6, "a millionth of it"},
+        Slip{1e-6, "a million times it"}, Slip{1e2, "1/100 of it"}, Slip{1e-2, "100 times it"}}) {
+    const double meant = value / slip.factor;
+    if (meant >= typical_lower_ && meant <= typical_upper_) {
+      return message + "; " + slip.words + ", " + number_text(meant) + in_unit +
+             ", would be typical: did a unit's prefix slip (N for mN, m for mm, W for mW)?";
+    }
+  }
+  return message + "; check its unit and its size";
+}
+
 bool ValueCheck::unbounded() const {
   return std::isinf(lower_) && lower_ < 0.0 && std::isinf(upper_);
 }

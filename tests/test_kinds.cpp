@@ -1,5 +1,6 @@
-// The registry of kinds: every kind builds from its examples, the listing in docs/kinds.md is the
-// one the code produces, and a new kind needs nothing from the engine but registration.
+// The registry of kinds: every kind builds from its examples, the listing in
+// docs/reference/kinds.md is the one the code produces, and a new kind needs nothing from the
+// engine but registration.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -91,11 +92,11 @@ TEST_CASE("Every kind of the standard registry builds and runs from its examples
   CHECK(examples > 25);
 }
 
-TEST_CASE("docs/kinds.md is the listing the registry produces") {
-  std::ifstream file(source_path("docs/kinds.md"));
+TEST_CASE("docs/reference/kinds.md is the listing the registry produces") {
+  std::ifstream file(source_path("docs/reference/kinds.md"));
   std::stringstream written;
   written << file.rdbuf();
-  // Regenerate with: build/tcpmsim kinds --markdown > docs/kinds.md
+  // Regenerate with: build/tcpmsim kinds --markdown > docs/reference/kinds.md
   CHECK(written.str() ==
         describe_kinds(standard_kinds(), shared_units(), true, fit::describe_candidates));
 }

@@ -62,6 +62,7 @@ struct ConfigDocument {
   std::map<std::string, std::string> parameter_prefixes;  // scenario path -> parameter path
   std::vector<KeyRead> reads;
   std::map<std::string, std::size_t> read_at;  // path -> index in reads
+  std::vector<std::string> warnings;           // located, in reading order
 
   KeyRead& read(const std::string& path) {
     const auto [found, added] = read_at.try_emplace(path, reads.size());
@@ -73,6 +74,8 @@ struct ConfigDocument {
     if (entry.part) return;  // what the section is says more than how it was read
     entry.expected = std::move(expected);
     entry.check = check.unbounded() ? "" : check.expectation();
+    if (check.has_typical_range())
+      entry.check += (entry.check.empty() ? "" : "; ") + check.typical_text();
   }
 };
 
@@ -613,7 +616,14 @@ double ConfigNode::as_quantity(std::string_view si_unit, const ValueCheck& check
   }
   if (std::string problem = check.problem(value, si_unit, "'" + text + "'"); !problem.empty())
     fail(problem);
+  if (std::string doubt = check.implausibility(value, si_unit, "'" + text + "'"); !doubt.empty())
+    document_->warnings.push_back(
+        printable(location().describe() + ": warning: " + path_ + ": " + doubt));
   return value;
+}
+
+const std::vector<std::string>& ConfigNode::warnings() const {
+  return document_->warnings;
 }
 
 double ConfigNode::as_number(const ValueCheck& check) const {

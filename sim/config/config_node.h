@@ -155,6 +155,9 @@ class ConfigNode {
   void reject_unknown_keys(const VariantKeys& variant_keys = {}) const;
   // The document as read, with overrides applied and defaults filled in.
   std::string resolved_yaml() const;
+  // "file:line:col: warning: key.path: ..." for every value read outside its typical range
+  // (ValueCheck::typical), in reading order.
+  const std::vector<std::string>& warnings() const;
 
  private:
   ConfigNode(std::shared_ptr<ConfigDocument> document, YAML::Node node, std::string path);

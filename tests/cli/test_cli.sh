@@ -41,6 +41,16 @@ contains "$work/err" "error: muscle.mechanics.k1: wrong unit in '10.8e-3 N': uni
 expect 3 "a bad --set is a configuration error" -- "$tcpmsim" validate "$config" --set "solver.rtol=-1"
 contains "$work/err" "command line (--set solver.rtol=-1): error: solver.rtol:" "the error points at the --set"
 
+# Issue 30: a value of an implausible size warns at its key; --strict makes the warning an error.
+sed "s/^    k1: .*/    k1: 14.04 N\/mm/" "$config" >"$work/slip.yaml"
+expect 0 "a stiffness 1000 times too large is a warning" -- "$tcpmsim" validate "$work/slip.yaml"
+contains "$work/err" "warning: muscle.mechanics.k1: '14.04 N/mm' is 14040 N/m, outside the typical range (0.1 to 5000 N/m)" "the warning names the key, the value and the typical range"
+contains "$work/err" "1/1000 of it, 14.04 N/m, would be typical" "and the likely slip"
+expect 3 "--strict makes it an error" -- "$tcpmsim" validate "$work/slip.yaml" --strict
+contains "$work/err" "tcpmsim: --strict: 1 warning is an error" "--strict says why it stops"
+expect 3 "run --strict stops before any work" -- "$tcpmsim" run "$work/slip.yaml" --strict -o "$work/slip.h5"
+[[ ! -e $work/slip.h5 && ! -e $work/slip.h5.partial ]] && echo "ok: no record" || { echo "FAIL: run --strict wrote a record"; failures=$((failures + 1)); }
+
 expect 0 "several scenarios run as a batch on threads" -- "$tcpmsim" run "$config" \
   "$source_dir/configs/composition/two_muscles.yaml" --jobs 2 --set "scenario.duration=5 s" \
   --output-dir "$work/batch" --quiet

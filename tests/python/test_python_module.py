@@ -8,6 +8,7 @@ import os
 import subprocess
 import tempfile
 import unittest
+import warnings
 
 import h5py
 import numpy as np
@@ -88,6 +89,19 @@ class PythonRunsAreCommandLineRuns(unittest.TestCase):
         with h5py.File(self.path("cli.h5"), "r") as record:
             for channel in result.channels[1:]:
                 self.assertTrue(same_bits(record[channel][()], result[channel]), channel)
+
+    def test_an_implausible_value_warns_with_its_range_and_strict_filters_raise(self):
+        # Issue 30: k1 in N/mm where mN/mm was meant is 1000 times its typical range.
+        scenario = tcpmsim.Scenario.from_yaml(CONFIGS[0])
+        self.assertEqual(scenario.warnings, [])
+        with self.assertWarnsRegex(UserWarning, r"muscle.mechanics.k1: '14.04 N/mm' is 14040 N/m"):
+            scenario.set("muscle.mechanics.k1", "14.04 N/mm")
+        self.assertEqual(len(scenario.warnings), 1)
+        self.assertIn("1/1000 of it, 14.04 N/m, would be typical", scenario.warnings[0])
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")  # as --strict
+            with self.assertRaises(UserWarning):
+                tcpmsim.Scenario.from_yaml(CONFIGS[0]).set("muscle.mechanics.k1", "14.04 N/mm")
 
     def test_a_plain_number_set_on_a_parameter_is_si(self):
         # As Scenario.parameters and the Simulator give it: 3.0 for k2 is 3 N/m (= 3 mN/mm),
