@@ -7,6 +7,7 @@
 #   TCPMSIM_TEST_FILTER       only the tests whose names match this regular expression
 #   TCPMSIM_BUILD_TARGETS     only these targets (default: all, benchmarks included)
 #   TCPMSIM_TEST_FILES        only these test files of tests/ (a ;-list) in tcpmsim_tests
+#   TCPMSIM_TEST_EXCLUDE_FILES  these test files of tests/ (a ;-list) left out of tcpmsim_tests
 #   TCPMSIM_FUZZ=ON           also build the libFuzzer targets and test their regression inputs
 #                             (needs CC=clang CXX=clang++; scripts/fuzz.sh can then fuzz this tree)
 set -euo pipefail
@@ -20,7 +21,8 @@ case $sanitize in
 esac
 build_dir="${TCPMSIM_BUILD_DIR:-$default_dir}"
 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE="$build_type" -DTCPMSIM_SANITIZE="$sanitize" -DTCPMSIM_BUILD_TESTS=ON \
-  -DTCPMSIM_FUZZ="${TCPMSIM_FUZZ:-OFF}" -DTCPMSIM_TEST_FILES="${TCPMSIM_TEST_FILES:-}"
+  -DTCPMSIM_FUZZ="${TCPMSIM_FUZZ:-OFF}" -DTCPMSIM_TEST_FILES="${TCPMSIM_TEST_FILES:-}" \
+  -DTCPMSIM_TEST_EXCLUDE_FILES="${TCPMSIM_TEST_EXCLUDE_FILES:-}"
 cmake --build "$build_dir" -j"$(nproc)" ${TCPMSIM_BUILD_TARGETS:+--target $TCPMSIM_BUILD_TARGETS}
 source scripts/sanitizer_options.sh
 ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)" ${TCPMSIM_TEST_FILTER:+-R "$TCPMSIM_TEST_FILTER"}

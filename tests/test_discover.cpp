@@ -14,46 +14,13 @@
 #include "identification/noise_floor.h"
 #include "sim/random_stream.h"
 #include "sim/run.h"
+#include "tests/support/discover_data.h"
 #include "tests/support/test_support.h"
 
 using namespace tcpmsim;
 using namespace tcpmsim::testing;
 
 namespace {
-
-const std::string kBase = "configs/discover/ch7_base.yaml";
-
-// A measurement of the base model with `hidden` overrides (the effect it holds), read by the
-// chapter-7 bench: load cell 0.5 mN resolution and 1 mN noise, L* jitter and spikes.
-std::string measurement(const std::string& name, std::vector<std::string> hidden,
-                        const std::string& duration = "300 s") {
-  // The protocol cut to 200 s of multisines to identify and 100 s of random steps to validate,
-  // to keep the suite quick; the whole protocol is scripts/discover_matrix.py's.
-  hidden.push_back("measurement.file=" + protocol_record(duration));
-  hidden.push_back("scenario.duration=" + duration);
-  const Scenario truth = load_scenario(source_path(kBase), hidden, shared_units());
-  const auto bench =
-      fit::load_bench(source_path("configs/discover/ch7_bench.yaml"), truth, shared_units());
-  const std::string path =
-      (std::filesystem::path(process_directory("discover")) / (name + ".csv")).string();
-  std::ofstream(path) << fit::measure(truth, bench, *shared_units());
-  return path;
-}
-
-// A request for the test data: the simplest member of each family (the nesting test tries them
-// all), two multistart points per fit, to keep the suite quick.
-fit::DiscoverRequest request(const std::string& data, std::vector<std::string> effects) {
-  fit::DiscoverRequest request;
-  request.max_order = 1;
-  request.starts = 2;
-  request.model_file = source_path(kBase);
-  request.data_file = data;
-  request.inputs = {"power", "deflection"};
-  request.outputs = {"force"};
-  request.validate_from = 200.0;
-  request.effects = std::move(effects);
-  return request;
-}
 
 std::string setup_error(const fit::DiscoverRequest& request) {
   try {
@@ -139,31 +106,31 @@ TEST_CASE("Spikes are replaced; a noisy smooth signal and a noisy staircase are 
 }
 
 TEST_CASE("discover refuses a request it cannot serve, before any fit, and says why") {
-  const std::string data = measurement("null", {});
-  auto bad = request(data, {});
+  const std::string data = discover_measurement("null", {});
+  auto bad = discover_request(data, {});
   bad.inputs = {"power", "current"};
   CHECK_THAT(setup_error(bad), Catch::Contains("--inputs") && Catch::Contains("'current'"));
-  bad = request(data, {});
+  bad = discover_request(data, {});
   bad.inputs = {"power", "force"};
   CHECK_THAT(setup_error(bad),
              Catch::Contains("replays no channel 'force'") && Catch::Contains("power, deflection"));
-  bad = request(data, {});
+  bad = discover_request(data, {});
   bad.outputs = {"force=load.forse"};
   CHECK_THAT(setup_error(bad), Catch::Contains("the model has no output 'load.forse'"));
-  bad = request(data, {});
+  bad = discover_request(data, {});
   bad.outputs = {"force=drive.power"};
   CHECK_THAT(setup_error(bad), Catch::Contains("is in N and output 'drive.power' in W"));
-  bad = request(data, {"hysteresis", "warm_up"});
+  bad = discover_request(data, {"hysteresis", "warm_up"});
   CHECK_THAT(setup_error(bad), Catch::Contains("no effect 'warm_up'"));
-  bad = request(data, {});
+  bad = discover_request(data, {});
   bad.validate_from = 299.5;
   CHECK_THAT(setup_error(bad), Catch::Contains("both windows need 16 samples"));
-  bad = request(data, {});
+  bad = discover_request(data, {});
   bad.parameters = {"muscle.mechanics.k3"};
   CHECK_THAT(setup_error(bad), Catch::Contains("no parameter 'muscle.mechanics.k3'"));
   // The default parameters are the force model's six (7.1), (7.5)-(7.6); the windows split at
   // the validation time.
-  const auto setup = fit::setup_discovery(request(data, {}), shared_units());
+  const auto setup = fit::setup_discovery(discover_request(data, {}), shared_units());
   CHECK(setup.base.problem.parameters.size() == 6);
   CHECK(setup.base.problem.outputs[0].output == "load.force");
   CHECK(setup.base.problem.identification.to < 200.0);
@@ -171,10 +138,11 @@ TEST_CASE("discover refuses a request it cannot serve, before any fit, and says 
 }
 
 TEST_CASE("Hysteresis hidden in the data is named, and attaching it shrinks the validation gap") {
-  const std::string data = measurement(
+  const std::string data = discover_measurement(
       "hysteresis", {"muscle.effects=[{type: hysteresis, stiffness: 50 N/m, force: 6 mN}]"});
   const auto setup = fit::setup_discovery(
-      request(data, {"hysteresis", "slow_relaxation", "nonlinear_stiffness"}), shared_units());
+      discover_request(data, {"hysteresis", "slow_relaxation", "nonlinear_stiffness"}),
+      shared_units());
   const fit::Discovery found = fit::discover(setup);
   INFO(fit::discovery_summary(found));
   CHECK(found.verdict == "hysteresis");
@@ -186,23 +154,6 @@ TEST_CASE("Hysteresis hidden in the data is named, and attaching it shrinks the 
   CHECK(best.validation_rmse[0] < 1.2e-3);
   // The base model's residual shows the signature: it follows the direction of the last motion.
   CHECK(found.diagnostics.feature(0, "last direction of motion") > 3 * found.diagnostics.bound);
-}
-
-TEST_CASE("Data without a hidden effect give the verdict none") {
-  const std::string data = measurement("null", {});
-  const auto setup = fit::setup_discovery(
-      request(data, {"hysteresis", "slow_relaxation", "nonlinear_stiffness"}), shared_units());
-  const fit::Discovery found = fit::discover(setup);
-  INFO(fit::discovery_summary(found));
-  CHECK(found.verdict == "none");
-  CHECK(found.kind == fit::VerdictKind::none);
-  // The base model fits to the noise, and its residual is white: at the floor read from the
-  // data, the load cell's sqrt(1 + 0.5^2/12) = 1.01 mN.
-  CHECK(found.at_noise == std::vector<bool>{true});
-  CHECK(found.setup.floor[0] == Approx(1.01e-3).epsilon(0.05));
-  CHECK(found.base.validation.rmse[0] < 1.2e-3);
-  CHECK(found.diagnostics.outputs[0].whiteness.p_value > 1e-3);
-  for (const auto& candidate : found.candidates) CHECK_FALSE(candidate.significant);
 }
 
 TEST_CASE("The noise floor is read from the data: white noise under a smooth signal and steps") {
@@ -259,87 +210,4 @@ TEST_CASE("Inputs on a grid or held between steps do not shield output spikes at
   CHECK(replaced == std::vector<std::size_t>{spikes.size()});
   for (std::size_t i : spikes)
     CHECK(std::abs(cleaned.find("inductance_measure")->values[i] - measure[i] + 0.02) < 3e-3);
-}
-
-TEST_CASE("Every candidate nests the base model: its refit ends at or below the base fit's cost") {
-  // Each candidate starts from the base fit with its effect at zero size, where it is the base
-  // model; its cost there equals the base fit's within the solver's tolerance (more states change
-  // CVODE's steps: at rtol 1e-6 by some 0.1 of a cost of 640, below the half unit that moves the
-  // BIC by one), and its fit only goes down from there.
-  for (const auto& [name, hidden] : std::vector<std::pair<std::string, std::vector<std::string>>>{
-           {"nest_null", {}},
-           {"nest_play",
-            {"muscle.effects=[{type: hysteresis, name: a, stiffness: 4 N/m, radius: 0.8 mm}, "
-             "{type: hysteresis, name: b, stiffness: 1.5 N/m, radius: 4 mm}]"}}}) {
-    const std::string data = measurement(name, hidden, "100 s");
-    fit::DiscoverRequest all = request(data, {});
-    all.validate_from = 70.0;
-    all.max_order = 0;
-    const fit::Discovery found = fit::discover(fit::setup_discovery(all, shared_units()));
-    INFO(name << "\n" << fit::discovery_summary(found));
-    CHECK(found.candidates.size() >= 8);
-    for (const auto& candidate : found.candidates) {
-      INFO(candidate.name << " [" << candidate.member << "]: " << candidate.reason);
-      REQUIRE(candidate.status == "fitted");
-      CHECK(std::abs(candidate.nested_cost - found.base.cost) < 0.5);
-      CHECK(candidate.result.cost <= candidate.nested_cost * (1 + 1e-9));
-      CHECK(candidate.result.cost < found.base.cost + 0.5);
-      // So its BIC can rise by no more than the parameters it adds cost.
-      const double n = static_cast<double>(found.base.identification.samples);
-      const auto added = candidate.result.estimates.size() - found.base.estimates.size();
-      CHECK(candidate.delta_bic < static_cast<double>(added) * std::log(n) + 1.0);
-    }
-  }
-}
-
-TEST_CASE("A residual no candidate explains is unexplained, never none, and --set reaches it") {
-  // Hysteresis in the data, but only a thermal candidate tried: the base model misses by several
-  // times the floor, the candidate does not help, and the verdict says so.
-  const std::string data = measurement(
-      "unexplained", {"muscle.effects=[{type: hysteresis, stiffness: 50 N/m, force: 6 mN}]"});
-  fit::DiscoverRequest thermal = request(data, {"thermal_lag"});
-  thermal.overrides = {"muscle.inductance.lambda_0=0.5"};
-  const fit::Discovery found = fit::discover(fit::setup_discovery(thermal, shared_units()));
-  INFO(fit::discovery_summary(found));
-  CHECK(found.verdict == "unexplained");
-  CHECK(found.kind == fit::VerdictKind::unexplained);
-  CHECK(found.at_noise == std::vector<bool>{false});
-  CHECK(found.base.validation.rmse[0] > 2 * found.setup.floor[0]);
-  CHECK(found.gap_closed == 0.0);
-  // The report ranks what the residual follows: the direction of the last motion among the
-  // strongest.
-  const auto ranked = fit::ranked_signatures(found.diagnostics, 0);
-  REQUIRE(ranked.size() >= 3);
-  bool direction = false;
-  for (std::size_t i = 0; i < 3; ++i)
-    direction = direction || ranked[i].what.find("last direction of motion") != std::string::npos;
-  CHECK(direction);
-  CHECK(fit::discovery_report(found).find("**unexplained**") != std::string::npos);
-  CHECK(fit::discovery_json(found).find("\"verdict_kind\": \"unexplained\"") != std::string::npos);
-  // The model's --set reaches every candidate's refit, not the base fit alone.
-  for (const auto& candidate : found.candidates) {
-    const Context context = candidate.spec.problem.model->make_context();
-    CHECK(context.parameter("muscle.inductance.lambda_0") == 0.5);
-  }
-}
-
-TEST_CASE("A ratchet and a heating-driven convection in the data are named, each as itself") {
-  // The two effects a real TCPM measurement showed: a force lost for good above a threshold
-  // temperature, and an hA that rises while the heater runs. Each is named against the other;
-  // against the whole catalogue (a slow relaxation also drifts) in the hidden-effect matrices.
-  const std::vector<std::string> tried = {"ratchet", "heating_dependent_convection"};
-  for (const auto& [name, hidden] : std::vector<std::pair<std::string, std::string>>{
-           {"ratchet", "muscle.effects=[{type: ratchet, rate: 1e-5 N/(K*s), threshold: 33 degC}]"},
-           {"heating_dependent_convection",
-            "muscle.effects=[{type: heating_convection, conductance: 0.04 W/K, reference_power: "
-            "3 W}]"}}) {
-    // 200 s of multisines: 150 s to identify, 50 s to validate.
-    const std::string data = measurement("new_" + name, {hidden}, "200 s");
-    fit::DiscoverRequest two = request(data, tried);
-    two.validate_from = 150.0;
-    const fit::Discovery found = fit::discover(fit::setup_discovery(two, shared_units()));
-    INFO(fit::discovery_summary(found));
-    CHECK(found.verdict == name);
-    CHECK(found.gap_closed > 0.6);
-  }
 }

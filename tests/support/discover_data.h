@@ -1,0 +1,23 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "identification/discovery.h"
+
+// The data and requests of discover's specifications (tests/test_discover*.cpp).
+namespace tcpmsim::testing {
+
+// A measurement of configs/discover/ch7_base.yaml with `hidden` overrides (the effect it holds),
+// read by the chapter-7 bench (load cell 0.5 mN resolution and 1 mN noise, L* jitter and
+// spikes), written as a CSV; its path. The protocol is cut to `duration`: 200 s of multisines to
+// identify, the rest random steps to validate, to keep the suite quick (the whole protocol is
+// scripts/discover_matrix.py's).
+std::string discover_measurement(const std::string& name, std::vector<std::string> hidden,
+                                 const std::string& duration = "300 s");
+
+// A request for such data: the simplest member of each family (the nesting test tries them
+// all), two multistart points per fit, validation from 200 s, to keep the suite quick.
+fit::DiscoverRequest discover_request(const std::string& data, std::vector<std::string> effects);
+
+}  // namespace tcpmsim::testing
