@@ -22,6 +22,8 @@ packages=(
   python3-dev pybind11-dev                 # the Python module (pybind11: the standard C++ binding)
   python3-cvxopt                           # the QP of examples/mpc_controller.py
   python3-build python3-setuptools python3-wheel python3-venv python3-pip  # the wheel, a venv
+  python3-sphinx python3-myst-parser furo python3-yaml  # the documentation site (scripts/docs.sh)
+  python3-nbsphinx pandoc python3-nbclient python3-ipykernel  # its notebooks: run, rendered
 )
 
 missing=()
