@@ -29,6 +29,11 @@ void build_joule_drive(const ConfigNode& node, const std::string& name, Scenario
 void build_muscle_drive(const ConfigNode& node, const std::string& name, ScenarioBuilder& build) {
   node.declare({"muscle"});
   const auto& muscle = build.linked(node, "muscle", kMuscleCategory);
+  if (!build.facts<MuscleFacts>(muscle.name)->has_inductance) {
+    node.fail("the Muscle Drive measures the coil's inductance (self-sensing), but " +
+              muscle.node.path() + " states none: give " + muscle.node.path() +
+              ".inductance, (6.3) in henries");
+  }
   if (build.facts<MuscleFacts>(muscle.name)->inductance_is_measure) {
     node.fail("the Muscle Drive measures the coil's decay time itself: give " + muscle.node.path() +
               ".inductance in henries (quantity: inductance), not as a measure");

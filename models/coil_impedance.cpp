@@ -85,17 +85,19 @@ CoilImpedance::CoilImpedance(std::string group, CoilImpedanceParameters defaults
       temperature_dependent_(defaults_.inductance.lambda_T != 0.0 ||
                              defaults_.resistance_law().rho_T != 0.0) {}
 
-std::unique_ptr<CoilImpedance> CoilImpedance::from_config(const std::string& group,
-                                                          const ConfigNode& inductance,
-                                                          const ConfigNode& resistance) {
+std::unique_ptr<CoilImpedance> CoilImpedance::from_config(
+    const std::string& group, const std::optional<ConfigNode>& inductance,
+    const ConfigNode& resistance) {
   CoilImpedanceParameters p;
   ParameterBindings<CoilImpedanceParameters> bind;
   read_resistance(resistance, p, bind);
-  read_inductance(inductance, p, bind);
+  p.has_inductance = inductance.has_value();
+  if (inductance) read_inductance(*inductance, p, bind);
   return std::make_unique<CoilImpedance>(group, p, std::move(bind));
 }
 
 std::vector<OutputDeclaration> CoilImpedance::outputs() const {
+  if (!has_inductance()) return {{"resistance", "ohm"}};
   return {defaults_.inductance.is_measure ? OutputDeclaration{"inductance_measure", "1"}
                                           : OutputDeclaration{"inductance", "H"},
           {"resistance", "ohm"}};
@@ -108,6 +110,9 @@ std::vector<InputDeclaration> CoilImpedance::inputs() const {
 }
 
 std::string CoilImpedance::check_connections() const {
+  if (source_count(mutual_input()) > 0 && !has_inductance())
+    return "couples the coil to its neighbours, but the muscle states no inductance: give its "
+           "inductance";
   if (source_count(mutual_input()) > 0 && defaults_.inductance.is_measure)
     return "adds mutual inductances in henries to an inductance given as the measure L*";
   return {};
@@ -138,6 +143,10 @@ void CoilImpedance::compute_outputs(const Evaluation& evaluation) const {
   const auto& run = run_state<Run>(evaluation);
   const double deflection = input(evaluation, kDeflection);
   const double temperature = needs_temperature() ? input(evaluation, kTemperature) : 0.0;
+  if (!has_inductance()) {
+    set_output(evaluation, kInductance, run.resistance(deflection, temperature));  // its only
+    return;
+  }
   double inductance = run.inductance(deflection, temperature);
   if (source_count(mutual_input()) > 0) inductance += input_sum(evaluation, mutual_input());
   set_output(evaluation, kInductance, inductance);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 
 #include "models/laws/impedance.h"
 #include "sim/component.h"
@@ -13,6 +14,7 @@ namespace tcpmsim {
 // (7.3) directly, the resistance as a constant, the linear law (6.5) or the thermal law (6.4)
 // R0 (1 + kappa (T - T0)) + rho_x x.
 struct CoilImpedanceParameters {
+  bool has_inductance = true;  // false: a muscle without self-sensing states no inductance law
   InductanceLaw inductance;
   enum class ResistanceForm { constant, linear, thermal };
   ResistanceForm resistance_form = ResistanceForm::constant;
@@ -28,16 +30,17 @@ struct CoilImpedanceParameters {
 // Drive's measure L*) by (6.3)/(7.3) and resistance by (6.5)/(6.4), from the muscle's
 // deflection and temperature. The drive heats with this resistance, so R(T) of an iron wire
 // feeds back into the Joule heating. The fan-in input "mutual_inductances" adds the mutual
-// inductance of coupled coils to the inductance (henries only): a bundle's neighbours.
+// inductance of coupled coils to the inductance (henries only): a bundle's neighbours. Without an
+// inductance law (nothing reads the coil's inductance) only the resistance is an output.
 class CoilImpedance final : public Component {
  public:
   enum Input { kDeflection, kTemperature };
-  enum Output { kInductance, kResistance };
+  enum Output { kInductance, kResistance };  // without an inductance law: the resistance only
   CoilImpedance(std::string group, CoilImpedanceParameters defaults,
                 ParameterBindings<CoilImpedanceParameters> bindings);
-  // Reads `inductance` and `resistance` (keys above).
+  // Reads `inductance` (if given) and `resistance` (keys above).
   static std::unique_ptr<CoilImpedance> from_config(const std::string& group,
-                                                    const ConfigNode& inductance,
+                                                    const std::optional<ConfigNode>& inductance,
                                                     const ConfigNode& resistance);
 
   std::vector<OutputDeclaration> outputs() const override;
@@ -52,6 +55,7 @@ class CoilImpedance final : public Component {
   int mutual_input() const { return needs_temperature() ? 2 : 1; }
   // Whether the impedance depends on temperature (as built).
   bool needs_temperature() const { return temperature_dependent_; }
+  bool has_inductance() const { return defaults_.has_inductance; }
   const CoilImpedanceParameters& defaults() const { return defaults_; }
 
  private:

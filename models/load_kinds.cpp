@@ -48,6 +48,7 @@ std::vector<Held> held_muscles(const ConfigNode& node, ScenarioBuilder& build) {
 // in every run whose parameters move either.
 void check_deflection_range(const ConfigNode& node, const Signal& deflection, const Held& muscle,
                             const std::string& load, ScenarioBuilder& build) {
+  if (!muscle.facts.has_inductance) return;  // no inductance law, no singularity
   const double duration = build.settings().duration;
   const double lowest = deflection.range(0.0, duration).first;
   const double singular = -muscle.facts.lambda_x;

@@ -118,13 +118,14 @@ void build_muscle(const ConfigNode& muscle, const std::string& name, ScenarioBui
     system.export_input(name + "." + port, mechanics, port);
 
   const ConfigNode resistance = muscle.at("resistance");
-  const ConfigNode inductance = muscle.at("inductance");
+  // The coil's inductance (6.3)/(7.3) only where something reads it: self-sensing.
+  const std::optional<ConfigNode> inductance = muscle.find("inductance");
   auto& coil = system.add(CoilImpedance::from_config(name, inductance, resistance));
   system.connect(coil, "deflection", name + ".deflection");
   system.export_input(name + ".mutual_inductances", coil, "mutual_inductances");
   if (coil.needs_temperature()) {
     if (!thermal.reports_temperature) {
-      (coil.defaults().resistance_law().rho_T != 0.0 ? resistance : inductance)
+      (coil.defaults().resistance_law().rho_T != 0.0 || !inductance ? resistance : *inductance)
           .fail("depends on temperature, but the reduced thermal form reports none; give " +
                 muscle.path() + ".thermal_force.force_per_kelvin");
     }
@@ -132,6 +133,7 @@ void build_muscle(const ConfigNode& muscle, const std::string& name, ScenarioBui
   }
 
   MuscleFacts facts;
+  facts.has_inductance = coil.has_inductance();
   facts.inductance_is_measure = coil.defaults().inductance.is_measure;
   facts.lambda_x = coil.defaults().inductance.lambda_x;
   facts.thermal = thermal;

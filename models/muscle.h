@@ -63,6 +63,7 @@ struct RestingMuscle {
 
 // What a muscle tells the instances built after it (its drive, its load, its effects).
 struct MuscleFacts {
+  bool has_inductance = true;          // false: no self-sensing key, no inductance output
   bool inductance_is_measure = false;  // (7.3) in the Muscle Drive's L*, not henries
   double lambda_x = 0.0;               // as built [m]
   ThermalForm thermal;                 // its thermal part, as built

@@ -33,9 +33,11 @@ std::string generic(const std::string& key) {
 
 std::string row(const KindKey& key, bool markdown) {
   std::string range = key.check.empty() ? "" : key.check;
-  const std::string fallback = !key.fallback.empty() ? "default " + key.fallback
-                               : key.optional        ? "optional"
-                                                     : "required";
+  const std::string within = markdown ? "`" + key.required_with + "`" : key.required_with;
+  const std::string fallback = !key.fallback.empty()        ? "default " + key.fallback
+                               : key.optional               ? "optional"
+                               : !key.required_with.empty() ? "required with " + within
+                                                            : "required";
   std::ostringstream line;
   if (markdown) {
     line << "| `" << key.key << "` | " << key.expected << " | " << range << " | " << fallback
@@ -93,18 +95,24 @@ std::vector<KindKey> kind_keys(const KindRegistry& kinds, const Kind& kind,
   std::vector<KindKey> keys;
   std::map<std::string, std::size_t> seen;
   for (const auto& example : kind.examples) {
-    std::vector<std::string> parts;  // sections below this one that another kind reads
+    std::vector<std::string> parts;              // sections below this one that another kind reads
+    std::vector<std::string> optional_sections;  // sections asked for with has or find
     for (const auto& read : example_reads(kinds, kind, example, units)) {
       bool inside_part = false;
       for (const auto& part : parts) inside_part = inside_part || under(read.path, part);
       if (inside_part) continue;
       if (read.part) parts.push_back(read.path);
+      if (read.expected.empty() && read.optional) optional_sections.push_back(read.path);
       if (read.expected.empty()) continue;
       const std::string key = generic(read.path);
       if (key == kinds.category(kind.category).selector) continue;  // said by the category
       const auto [found, added] = seen.try_emplace(key, keys.size());
       if (added) {
-        keys.push_back({key, read.expected, read.check, read.fallback, read.optional});
+        std::string within;  // the innermost optional section holding the key
+        for (const auto& section : optional_sections)
+          if (under(read.path, section) && section.size() > within.size()) within = section;
+        keys.push_back(
+            {key, read.expected, read.check, read.fallback, read.optional, generic(within)});
       } else {
         keys[found->second].optional = keys[found->second].optional || read.optional;
       }

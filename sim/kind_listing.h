@@ -30,6 +30,9 @@ struct KindKey {
   std::string check;
   std::string fallback;
   bool optional = false;
+  // A key required only when the optional section above it is given ("inductance" for
+  // inductance.lambda_l: a muscle without self-sensing has neither).
+  std::string required_with;
 };
 // Where an example's scenario is read from: `name` as given, or, when the example has files,
 // a file of that name in a new temporary directory that holds them (removed with this).
