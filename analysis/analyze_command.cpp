@@ -1,5 +1,6 @@
 #include "analysis/analyze_command.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <stdexcept>
 
@@ -27,6 +28,8 @@ void write_steps(Hdf5Writer& file, const RecordAnalysis& analysis) {
   file.write("steps/final_value", each(steps, [](auto& s) { return s.final_value; }), y);
   file.write("steps/rise_time", each(steps, [](auto& s) { return s.rise_time; }), "s");
   file.write("steps/settling_time", each(steps, [](auto& s) { return s.settling_time; }), "s");
+  file.write("steps/time_constant", each(steps, [](auto& s) { return s.time_constant; }), "s");
+  file.write("steps/settled", each(steps, [](auto& s) { return s.settled ? 1.0 : 0.0; }), "1");
   file.write("steps/overshoot", each(steps, [](auto& s) { return s.overshoot; }), "1");
   file.write("steps/steady_state_error", each(steps, [](auto& s) { return s.steady_state_error; }),
              y);
@@ -80,6 +83,13 @@ void write_record_analysis(Hdf5Writer& file, const RecordAnalysis& analysis) {
   if (!analysis.notes.empty()) file.write_strings("notes", analysis.notes);
 }
 
+std::string default_analysis_path(const std::string& record, const AnalysisRequest& request) {
+  std::string response = request.output;
+  std::replace(response.begin(), response.end(), '/', '_');
+  return "results/" + std::filesystem::path(record).stem().string() + "_" + response +
+         (request.reference.empty() ? "_analysis.h5" : "_steps.h5");
+}
+
 std::string run_analyze_command(const AnalyzeOptions& options, std::ostream& out) {
   RecordChannels record;
   try {
@@ -90,10 +100,9 @@ std::string run_analyze_command(const AnalyzeOptions& options, std::ostream& out
     throw std::invalid_argument(error.what());  // the input is wrong, not the output
   }
   const RecordAnalysis analysis = analyze_record(record, options.request);
-  const std::string output =
-      options.output.empty()
-          ? "results/" + std::filesystem::path(options.record).stem().string() + "_analysis.h5"
-          : options.output;
+  const std::string output = options.output.empty()
+                                 ? default_analysis_path(options.record, options.request)
+                                 : options.output;
   Hdf5Writer file(output);
   write_record_analysis(file, analysis);
   file.provenance({options.invocation, {{record.config_file, record.config, record.seed}}});

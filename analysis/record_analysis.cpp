@@ -233,12 +233,25 @@ void report_steps(const RecordAnalysis& analysis, std::ostringstream& text) {
        << analysis.step_options.rise.upper * 100 << " % of the step, settling into +-"
        << analysis.step_options.settling_band * 100 << " % of the step around the final value\n";
   text << "  step at [s]   reference   final value   rise [s]   settling [s]   overshoot [%]"
-          "   steady-state error\n";
+          "   steady-state error   time constant [s]\n";
   for (const auto& step : analysis.steps) {
     text << "  " << value_text(step.step_time, 6) << "   " << value_text(step.reference) << "   "
          << value_text(step.final_value) << "   " << value_text(step.rise_time) << "   "
          << value_text(step.settling_time) << "   " << value_text(step.overshoot * 100.0, 3)
-         << "   " << value_text(step.steady_state_error) << "\n";
+         << "   " << value_text(step.steady_state_error) << "   " << value_text(step.time_constant)
+         << (step.settled ? "" : " (not settled)") << "\n";
+  }
+  for (const auto& step : analysis.steps) {
+    if (step.settled) continue;
+    text << "warning: the step at " << value_text(step.step_time, 6) << " s is held "
+         << value_text(step.hold) << " s, "
+         << (std::isfinite(step.time_constant)
+                 ? value_text(step.hold / step.time_constant, 2) + " time constants of " +
+                       value_text(step.time_constant) + " s"
+                 : std::string("and never reaches 63 % of its final value"))
+         << ": it has not settled (" << kSettledTimeConstants
+         << " are needed), so its final value, rise and settling are biased; analyse a longer "
+            "hold\n";
   }
 }
 

@@ -171,6 +171,10 @@ std::vector<StepMetrics> step_metrics(std::span<const double> time,
     const double upper =
         first_reaching(time, response, step.index, last, step.start + rise.upper * size, direction);
     step.rise_time = size == 0.0 ? kNaN : upper - lower;
+    const double at_time_constant = first_reaching(
+        time, response, step.index, last, step.start + (1.0 - std::exp(-1.0)) * size, direction);
+    step.time_constant = size == 0.0 ? kNaN : at_time_constant - time[step.index];
+    step.settled = step.hold >= kSettledTimeConstants * step.time_constant;  // NaN: not settled
     step.settling_time = size == 0.0
                              ? kNaN
                              : settling_time(time, response, step.index, last, step.final_value,

@@ -55,6 +55,9 @@ std::vector<StepRise> step_rise_times(std::span<const double> time,
 // at the step and the final value y_f the mean response over the last `final_fraction` of the
 // segment (at least one sample), so that the metrics hold for a response in other units than
 // its reference (power in, force out) and for one that never reaches the reference.
+// A step's hold counts as settled when it lasts this many time constants (e^-5: 0.7 %).
+inline constexpr double kSettledTimeConstants = 5.0;
+
 struct StepMetricsOptions {
   RiseTimeDefinition rise;      // of the step y_f - y0: 10 %-90 % by default
   double settling_band = 0.02;  // settled within +-2 % of |y_f - y0| around y_f
@@ -73,6 +76,11 @@ struct StepMetrics {
                                     // interpolated linearly; NaN if either is not reached
   double settling_time = 0.0;       // from the step until the response stays within the band
                                     // around y_f; NaN if it is outside at the segment's end
+  double time_constant = 0.0;       // from the step until y0 + (1 - 1/e)(y_f - y0) is reached,
+                                    // interpolated: tau of a first-order response; NaN if never
+  bool settled = true;              // the hold lasts kSettledTimeConstants time constants, so
+                                    // y_f is within e^-5 = 0.7 % of the end; if not, y_f, the
+                                    // rise and the settling are biased (a longer hold is needed)
   double overshoot = 0.0;           // beyond y_f, as a fraction of |y_f - y0| (0: none)
   double steady_state_error = 0.0;  // reference - y_f, when both share units; else NaN
 };

@@ -33,6 +33,7 @@
 #include "sweep/batch_run.h"
 #include "sweep/sweep_executor.h"
 #include "sweep/sweep_mpi.h"
+#include "sweep/sweep_table.h"
 #include "tcpmsim/version.h"
 
 namespace {
@@ -281,6 +282,7 @@ int sweep(const Options& options) {
                   : tcpmsim::sweep::run_sweep(spec, settings, units, report);
   }
   if (!options.quiet && tcpmsim::sweep::launched_rank() == 0) {
+    std::cout << tcpmsim::sweep::sweep_table(spec, outcome.output);
     std::cout << "wrote " << outcome.output << ": " << outcome.runs << " runs";
     if (outcome.resumed > 0) std::cout << " (" << outcome.resumed << " done before the resume)";
     std::cout << ", " << outcome.failed << " failed\n";
@@ -632,8 +634,10 @@ int main(int argc, char** argv) {
       ->add_option("record", analysis.record, "An HDF5 record (tcpmsim run, Result.save)")
       ->required()
       ->check(CLI::ExistingFile);
-  analyze_command->add_option("-o,--output", analysis.output,
-                              "Output file (default: results/<record stem>_analysis.h5)");
+  analyze_command->add_option(
+      "-o,--output", analysis.output,
+      "Output file (default: results/<record stem>_<response>_analysis.h5, or _steps.h5 with "
+      "--reference)");
   analyze_command->add_flag("-q,--quiet", analysis.quiet, "No tables");
   analyze_command->add_option("--response", analysis.request.output, "The channel analysed")
       ->required()

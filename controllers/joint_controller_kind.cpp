@@ -71,8 +71,15 @@ void build_joint_angle(const ConfigNode& node, const std::string& name, Scenario
   check_takes_command(left_facts);
   check_takes_command(right_facts);
   if (left_facts.period != right_facts.period) {
-    node.fail("the drives " + left_drive + " and " + right_drive +
-              " run at different PWM frequencies; one controller samples both with one period");
+    // Reported at the setting that differs: the right drive's frequency, or the left's when the
+    // right one takes the default.
+    const auto at =
+        right_facts.section.find("pwm_frequency")  ? right_facts.section.at("pwm_frequency")
+        : left_facts.section.find("pwm_frequency") ? left_facts.section.at("pwm_frequency")
+                                                   : node;
+    at.fail("the drives " + left_drive + " and " + right_drive +
+            " run at different PWM frequencies; the joint-angle controller " + name +
+            " samples both with one period");
   }
   SystemBuilder& system = build.system();
   system.constrain([left_drive, right_drive](const Context& context) -> std::string {

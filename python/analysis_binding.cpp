@@ -33,6 +33,8 @@ py::dict steps_dict(const RecordAnalysis& analysis) {
   steps["final_value"] = column<S, double>(all, [](const S& s) { return s.final_value; });
   steps["rise_time"] = column<S, double>(all, [](const S& s) { return s.rise_time; });
   steps["settling_time"] = column<S, double>(all, [](const S& s) { return s.settling_time; });
+  steps["time_constant"] = column<S, double>(all, [](const S& s) { return s.time_constant; });
+  steps["settled"] = column<S, bool>(all, [](const S& s) { return s.settled; });
   steps["overshoot"] = column<S, double>(all, [](const S& s) { return s.overshoot; });
   steps["steady_state_error"] =
       column<S, double>(all, [](const S& s) { return s.steady_state_error; });

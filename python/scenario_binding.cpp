@@ -128,8 +128,12 @@ PyScenario PyScenario::from_text(const std::string& text, std::vector<std::strin
 }
 
 std::shared_ptr<const Scenario> PyScenario::load(const std::vector<std::string>& overrides) const {
-  Scenario scenario = is_text_ ? load_scenario_text(source_, "<yaml text>", overrides, units_)
-                               : load_scenario(source_, overrides, units_);
+  // A value Python set is located at the call that set it, not at a command line.
+  const std::string origin = "tcpmsim.Scenario (set ";
+  Scenario scenario =
+      is_text_
+          ? load_scenario_text(source_, "<yaml text>", overrides, units_, standard_kinds(), origin)
+          : load_scenario(source_, overrides, units_, standard_kinds(), origin);
   scenario.invocation = python_invocation();
   return std::make_shared<const Scenario>(std::move(scenario));
 }

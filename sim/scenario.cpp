@@ -217,7 +217,8 @@ Scenario build_scenario(const ConfigNode& root, const KindRegistry& kinds) {
 
 Scenario load_scenario_text(const std::string& text, const std::string& name,
                             const std::vector<std::string>& overrides,
-                            std::shared_ptr<const UnitSystem> units, const KindRegistry& kinds) {
+                            std::shared_ptr<const UnitSystem> units, const KindRegistry& kinds,
+                            const std::string& override_origin) {
   if (overrides.empty()) {
     Scenario scenario = build_scenario(ConfigNode::load_text(text, name, {}, units), kinds);
     scenario.source = name;
@@ -225,7 +226,8 @@ Scenario load_scenario_text(const std::string& text, const std::string& name,
   }
   const std::vector<std::string> sections = instance_sections(kinds);
   // Every override through the document: it checks them all and gives the resolved scenario.
-  const ConfigNode everything = ConfigNode::load_text(text, name, overrides, units, sections);
+  const ConfigNode everything =
+      ConfigNode::load_text(text, name, overrides, units, sections, override_origin);
   const Scenario complete = build_scenario(everything, kinds);
   const std::vector<Assignment>& assignments = everything.assignments();
   // Those that set a parameter go to the run context instead, as long as the model built
@@ -246,7 +248,8 @@ Scenario load_scenario_text(const std::string& text, const std::string& name,
     for (std::size_t k = 0; k < assignments.size(); ++k) {
       if (!to_context[k]) structural.push_back(overrides[k]);
     }
-    const ConfigNode document = ConfigNode::load_text(text, name, structural, units, sections);
+    const ConfigNode document =
+        ConfigNode::load_text(text, name, structural, units, sections, override_origin);
     Scenario scenario = build_scenario(document, kinds);
     bool consistent = true;
     for (std::size_t k = 0; k < assignments.size(); ++k) {
@@ -281,8 +284,10 @@ Scenario load_scenario_text(const std::string& text, const std::string& name,
 }
 
 Scenario load_scenario(const std::string& file, const std::vector<std::string>& overrides,
-                       std::shared_ptr<const UnitSystem> units, const KindRegistry& kinds) {
-  return load_scenario_text(read_text_file(file), file, overrides, std::move(units), kinds);
+                       std::shared_ptr<const UnitSystem> units, const KindRegistry& kinds,
+                       const std::string& override_origin) {
+  return load_scenario_text(read_text_file(file), file, overrides, std::move(units), kinds,
+                            override_origin);
 }
 
 Context Scenario::make_context() const {

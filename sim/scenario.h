@@ -48,11 +48,14 @@ Scenario build_scenario(const ConfigNode& root, const KindRegistry& kinds);
 // ("key.path=value", the command line's --set). An override whose path names a numeric
 // parameter of the model (left.mechanics.k2, or its full path muscles.left.mechanics.k2) is
 // set in the run context with its unit converted here; every other override (a kind, a choice,
-// a whole section) changes the document before the model is built.
+// a whole section) changes the document before the model is built. An override's errors are
+// located at `override_origin` + "KEY=VALUE)" ("command line (--set ...)" by default).
 Scenario load_scenario_text(const std::string& text, const std::string& name,
                             const std::vector<std::string>& overrides,
-                            std::shared_ptr<const UnitSystem> units, const KindRegistry& kinds);
+                            std::shared_ptr<const UnitSystem> units, const KindRegistry& kinds,
+                            const std::string& override_origin = kCommandLineOrigin);
 Scenario load_scenario(const std::string& file, const std::vector<std::string>& overrides,
-                       std::shared_ptr<const UnitSystem> units, const KindRegistry& kinds);
+                       std::shared_ptr<const UnitSystem> units, const KindRegistry& kinds,
+                       const std::string& override_origin = kCommandLineOrigin);
 
 }  // namespace tcpmsim

@@ -95,6 +95,16 @@ std::string parameter_unit(const std::vector<SweepScenario>& scenarios, const st
   return unit;
 }
 
+// The parameter of the scenarios whose path is nearest to `path` (a misspelling), or "".
+std::string nearest_parameter(const std::vector<SweepScenario>& scenarios,
+                              const std::string& path) {
+  std::vector<std::string> paths;
+  for (const auto& scenario : scenarios)
+    for (const auto& parameter : scenario.scenario->system->parameters())
+      paths.push_back(parameter.declaration.path);
+  return closest_match(path, paths);
+}
+
 bool is_parameter(const std::vector<SweepScenario>& scenarios, const std::string& path) {
   for (const auto& scenario : scenarios)
     if (find_parameter(scenario, path) != nullptr) return true;
@@ -211,7 +221,18 @@ AxisValues read_axis(const ConfigNode& node, const std::vector<SweepScenario>& s
   axis.structural = !is_parameter(scenarios, axis.path);
   if (!axis.structural) axis.unit = parameter_unit(scenarios, axis.path, parameter);
   std::vector<std::string> texts;
-  read.values = read_axis_values(node, axis, seed, texts);
+  try {
+    read.values = read_axis_values(node, axis, seed, texts);
+  } catch (const ConfigError&) {
+    // A path no scenario has is read as a structural axis of plain numbers, so a misspelt
+    // parameter's range fails on its units ("cannot be converted to '1'"): the path is the
+    // mistake, and it is reported at `parameter:`.
+    const std::string nearest = axis.structural ? nearest_parameter(scenarios, axis.path) : "";
+    if (!nearest.empty())
+      parameter.fail("unknown parameter '" + axis.path + "' (did you mean '" + nearest +
+                     "'? tcpmsim validate lists the parameters)");
+    throw;
+  }
   axis.texts = std::move(texts);
   if (axis.structural) check_structural(parameter, axis, scenarios, units);
   return read;

@@ -268,6 +268,12 @@ TEST_CASE("A joint and its controller refuse what they cannot build, with a loca
                                  "0 rad, co_contraction: 1 W, gains: {proportional: 20 W/rad, "
                                  "integral_time: 2 s}, power_limits: [0.1 W, 3 W]}\n"),
              Catch::Contains("controller: joint-angle control commands the Muscle Drive"));
+  // Two PWM frequencies for one controller: reported at the setting that differs (issue 31).
+  CHECK_THAT(config_error(read_text_file(source_path("configs/pair/angle_steps.yaml")),
+                          {"drives.right_drive.pwm_frequency=40 Hz"}),
+             Catch::StartsWith("command line (--set drives.right_drive.pwm_frequency=40 Hz): "
+                               "error: drives.right_drive.pwm_frequency: the drives left_drive "
+                               "and right_drive run at different PWM frequencies"));
 }
 
 TEST_CASE("A muscle that goes slack under a torque step carries nothing and leaves the stiffness") {

@@ -112,7 +112,34 @@ TEST_CASE("Steps of power at constant deflection give the first-order step metri
     CHECK(step.settling_time == Approx(std::log(50.0) / kKappaC).margin(0.01));
     CHECK(step.overshoot < 1e-4);                // a first-order lag does not overshoot
     CHECK(std::isnan(step.steady_state_error));  // force against power: no common unit
+    // 63.2 % of the step after one time constant, 1 / kappa_c = 7.6 s; held 5 of them or more.
+    CHECK(step.time_constant == Approx(1.0 / kKappaC).margin(0.01));
+    CHECK(step.settled);
   }
+}
+
+TEST_CASE("A step held for fewer than five time constants is reported as not settled",
+          "[analyze]") {
+  // The power steps of the test above at a tenth of kappa_c: tau = 76 s, held 150 to 200 s.
+  const Scenario scenario =
+      load_scenario(source_path("configs/analysis/power_steps.yaml"),
+                    {"muscle.thermal_force.kappa_c=13.16e-3 1/s"}, shared_units());
+  const RecordAnalysis analysis =
+      analyze_record(memory_record_channels(scenario, run_in_memory(scenario)), [] {
+        AnalysisRequest request;
+        request.output = "muscle/force";
+        request.reference = "drive/power";
+        return request;
+      }());
+  REQUIRE_FALSE(analysis.steps.empty());
+  const StepMetrics& first = analysis.steps.front();
+  CHECK_FALSE(first.settled);
+  // Its final value falls short of the settled one, P kappa_P / kappa_c, by e^{-hold/tau} and
+  // more: the rise time is short of tau ln 9.
+  CHECK(first.rise_time < 0.95 * std::log(9.0) / 13.16e-3);
+  const std::string report = analysis_report(analysis);
+  CHECK_THAT(report, Catch::Contains("(not settled)") && Catch::Contains("warning: the step at") &&
+                         Catch::Contains("it has not settled (5 are needed)"));
 }
 
 TEST_CASE(

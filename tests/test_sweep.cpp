@@ -4,6 +4,7 @@
 
 #include <H5Cpp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +19,7 @@
 #include "sweep/sweep_run.h"
 #include "sweep/sweep_spec.h"
 #include "sweep/sweep_store.h"
+#include "sweep/sweep_table.h"
 #include "tests/support/record_digest.h"
 #include "tests/support/test_support.h"
 
@@ -195,6 +197,11 @@ TEST_CASE("a bad sweep file gets one located error before any run", "[sweep]") {
   CHECK_THAT(sweep_error(head + "derived:\n  - {parameter: muscle.thermal.conductance, "
                                 "multiply: [muscle.thermal.heat_capacity]}\n"),
              Catch::Contains("the product has the unit"));
+  // A misspelt parameter's range is reported at its path, not as a unit that no number takes.
+  CHECK_THAT(sweep_error(axis("{parameter: muscle.thermal.conductanse, range: {from: 29 mW/K, "
+                              "to: 116 mW/K, count: 3}}")),
+             Catch::Contains("unknown parameter 'muscle.thermal.conductanse' (did you mean "
+                             "'muscle.thermal.conductance'?"));
   CHECK_THAT(sweep_error("sweep: {name: bad}\nscenario: nowhere.yaml\n"),
              Catch::Contains("no scenario file"));
   // A structural axis' every value is tried, not only its first.
@@ -284,6 +291,11 @@ TEST_CASE("a run that fails is recorded with its message, and the sweep goes on"
   const auto outcome = run_sweep(spec, {output, 2, false}, shared_units());
   CHECK(outcome.failed == 1);
   CHECK(read_texts(output, "status") == std::vector<std::string>{"ok", "failed", "ok"});
+  // The table the command prints at the end: a header with units, a row per run.
+  const std::string table = sweep_table(spec, output);
+  CHECK_THAT(table, Catch::StartsWith("run  muscle.thermal.heat_capacity [J/K]  tau [s]"));
+  CHECK_THAT(table, Catch::Contains("\n1    -1 ") && Catch::Contains("nan      failed"));
+  CHECK(std::count(table.begin(), table.end(), '\n') == 4);
   const auto messages = read_texts(output, "message");
   CHECK_THAT(messages[1], Catch::Contains("muscle.thermal.heat_capacity"));
   const auto tau = read_column(output, "tau");

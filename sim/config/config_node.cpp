@@ -49,6 +49,7 @@ std::string closest_match(std::string_view word, const std::vector<std::string>&
 
 struct ConfigDocument {
   std::string file;
+  std::string override_origin = kCommandLineOrigin;  // "command line (--set "
   YAML::Node root;
   YAML::Node resolved;
   bool empty = false;  // the file holds no document (blank, or only comments)
@@ -94,8 +95,8 @@ bool is_prefix_path(std::string_view prefix, std::string_view path) {
   return path.size() == prefix.size() || path[prefix.size()] == '.' || path[prefix.size()] == '[';
 }
 
-SourceLocation command_line(const std::string& file, const std::string& assignment) {
-  return {file, 0, 0, "command line (--set " + assignment + ")"};
+SourceLocation command_line(const ConfigDocument& document, const std::string& assignment) {
+  return {document.file, 0, 0, document.override_origin + assignment + ")"};
 }
 
 // Where the value or key at `path` came from: the last --set that gave it or a section above it,
@@ -104,11 +105,10 @@ SourceLocation locate(const ConfigDocument& document, const std::string& path,
                       const YAML::Mark& mark) {
   for (auto assignment = document.overrides.rbegin(); assignment != document.overrides.rend();
        ++assignment) {
-    if (is_prefix_path(assignment->path, path))
-      return command_line(document.file, assignment->text);
+    if (is_prefix_path(assignment->path, path)) return command_line(document, assignment->text);
   }
   if (const auto found = document.introduced.find(path); found != document.introduced.end())
-    return command_line(document.file, found->second);
+    return command_line(document, found->second);
   if (mark.is_null()) return {document.file, 0, 0, {}};
   return {document.file, mark.line + 1, mark.column + 1, {}};
 }
@@ -354,7 +354,7 @@ void reject_quote_open_to_end(const YAML::Node& root, const std::string& text,
 // Applies one --set to the document.
 void apply_override(ConfigDocument& document, const std::string& assignment,
                     const std::vector<std::string>& instance_sections) {
-  const SourceLocation origin = command_line(document.file, assignment);
+  const SourceLocation origin = command_line(document, assignment);
   const auto equals = assignment.find('=');
   if (equals == std::string::npos || equals == 0 || equals + 1 == assignment.size()) {
     throw ConfigError(origin, "", "expected --set key.path=value");
@@ -385,9 +385,11 @@ void apply_override(ConfigDocument& document, const std::string& assignment,
 std::shared_ptr<ConfigDocument> parse_document(const std::string& text, const std::string& name,
                                                const std::vector<std::string>& overrides,
                                                std::shared_ptr<const UnitSystem> units,
-                                               const std::vector<std::string>& instance_sections) {
+                                               const std::vector<std::string>& instance_sections,
+                                               const std::string& override_origin) {
   auto document = std::make_shared<ConfigDocument>();
   document->file = name;
+  document->override_origin = override_origin;
   document->units = std::move(units);
   reject_control_bytes(text, name);
   document->root = parse_yaml(text, name);
@@ -413,15 +415,19 @@ std::shared_ptr<ConfigDocument> parse_document(const std::string& text, const st
 ConfigNode ConfigNode::load_text(const std::string& text, const std::string& name,
                                  const std::vector<std::string>& overrides,
                                  std::shared_ptr<const UnitSystem> units,
-                                 const std::vector<std::string>& instance_sections) {
-  return ConfigNode(parse_document(text, name, overrides, std::move(units), instance_sections), {},
-                    "");
+                                 const std::vector<std::string>& instance_sections,
+                                 const std::string& override_origin) {
+  return ConfigNode(
+      parse_document(text, name, overrides, std::move(units), instance_sections, override_origin),
+      {}, "");
 }
 
 ConfigNode ConfigNode::load_file(const std::string& file, const std::vector<std::string>& overrides,
                                  std::shared_ptr<const UnitSystem> units,
-                                 const std::vector<std::string>& instance_sections) {
-  return load_text(read_text_file(file), file, overrides, std::move(units), instance_sections);
+                                 const std::vector<std::string>& instance_sections,
+                                 const std::string& override_origin) {
+  return load_text(read_text_file(file), file, overrides, std::move(units), instance_sections,
+                   override_origin);
 }
 
 const std::vector<Assignment>& ConfigNode::assignments() const {

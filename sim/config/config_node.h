@@ -21,6 +21,10 @@ namespace tcpmsim {
 
 struct ConfigDocument;
 
+// How a --set's location starts: "command line (--set KEY=VALUE)". Another caller names itself
+// ("tcpmsim.Scenario (set KEY=VALUE)", Python's Scenario.set).
+inline constexpr const char* kCommandLineOrigin = "command line (--set ";
+
 // What a scenario's reader asked of one key: the listing of kinds is made of these, so that it
 // says what the code reads.
 struct KeyRead {
@@ -60,13 +64,16 @@ class ConfigNode {
   // `overrides` are "key.path=value" strings (the CLI's --set); values are YAML. A path may
   // start with an instance's name in one of `instance_sections` (the plural sections, whose
   // keys are names): "m2.mechanics.k2" for "muscles.m2.mechanics.k2".
+  // `override_origin` starts the location of an override's value (kCommandLineOrigin).
   static ConfigNode load_file(const std::string& file, const std::vector<std::string>& overrides,
                               std::shared_ptr<const UnitSystem> units,
-                              const std::vector<std::string>& instance_sections = {});
+                              const std::vector<std::string>& instance_sections = {},
+                              const std::string& override_origin = kCommandLineOrigin);
   static ConfigNode load_text(const std::string& text, const std::string& name,
                               const std::vector<std::string>& overrides,
                               std::shared_ptr<const UnitSystem> units,
-                              const std::vector<std::string>& instance_sections = {});
+                              const std::vector<std::string>& instance_sections = {},
+                              const std::string& override_origin = kCommandLineOrigin);
 
   // The --set assignments, in the order given.
   const std::vector<Assignment>& assignments() const;

@@ -289,6 +289,11 @@ expect 0 "a run of power steps" -- "$tcpmsim" run "$source_dir/configs/analysis/
 expect 0 "analyze gives the step metrics of any channel" -- "$tcpmsim" analyze "$work/steps.h5" \
   --response muscle/force --reference drive/power -o "$work/analysis.h5"
 contains "$work/out" "step response of muscle/force [N] against drive/power [W]" "analyze names the channels and units"
+# Issue 30: analyses of other channels of one record go to files of their own by default.
+mkdir -p "$work/analyses"
+expect 0 "analyze a record's force steps" -- bash -c "cd '$work/analyses' && '$tcpmsim' analyze ../steps.h5 --response muscle/force --reference drive/power -q"
+expect 0 "and its temperature steps" -- bash -c "cd '$work/analyses' && '$tcpmsim' analyze ../steps.h5 --response muscle/temperature --reference drive/power -q"
+[[ -s $work/analyses/results/steps_muscle_force_steps.h5 && -s $work/analyses/results/steps_muscle_temperature_steps.h5 ]] && echo "ok: two analyses, two files" || { echo "FAIL: the default analysis files"; ls -R "$work/analyses"; failures=$((failures + 1)); }
 expect 2 "analyze names a channel the record lacks" -- "$tcpmsim" analyze "$work/run.h5" \
   --response muscle/forse -o "$work/none_analysis.h5"
 contains "$work/err" "has no channel 'muscle/forse'; it has" "the analysis error lists the channels"

@@ -115,6 +115,11 @@ class PythonRunsAreCommandLineRuns(unittest.TestCase):
         # A negative SI value is refused as the command line refuses it, with the unit shown.
         with self.assertRaisesRegex(tcpmsim.ConfigError, "got '-3.0 N/m'"):
             plain.set("muscle.mechanics.k2", -3.0)
+        # Located at the call that set it, not at a command line (issue 30).
+        with self.assertRaisesRegex(tcpmsim.ConfigError,
+                                    r"^tcpmsim\.Scenario \(set muscle\.mechanics\.k2=-3\.0 N/m\): "
+                                    r"error: muscle\.mechanics\.k2"):
+            plain.set("muscle.mechanics.k2", -3.0)
         # A path that is not a model parameter keeps the number as it is.
         self.assertEqual(tcpmsim.Scenario.from_yaml(CONFIGS[0]).set("scenario.seed", 5).overrides,
                          ["scenario.seed=5"])
@@ -235,7 +240,13 @@ class PythonErrorsAreCommandLineErrors(unittest.TestCase):
                 path, value = setting.split("=")
                 with self.assertRaises(error) as raised:
                     scenario.set(path, value)
-                self.assertTrue(expected.endswith(str(raised.exception)), (expected, str(raised.exception)))
+                # The command line's message, located at the Python call instead of a --set
+                # (issue 30).
+                message = str(raised.exception)
+                self.assertTrue(message.startswith("tcpmsim.Scenario (set %s): error: " % setting),
+                                message)
+                self.assertTrue(expected.endswith(message.split(": error: ", 1)[1]),
+                                (expected, message))
                 self.assertEqual(scenario.overrides, [])  # unchanged after the error
                 self.assertTrue(isinstance(raised.exception, ValueError))
 
