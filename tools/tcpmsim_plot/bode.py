@@ -15,8 +15,17 @@ def responses(handle):
     return found
 
 
+def bode_figure(path, task=None):
+    """The Bode figure of a sweep task (or an estimated frequency response) in `path`."""
+    with open_file(path) as handle:
+        return _bode_figure(handle, path, task)
+
+
 def plot_bode(path, task, output):
-    handle = open_file(path)
+    save(bode_figure(path, task), output)
+
+
+def _bode_figure(handle, path, task):
     sweeps = responses(handle)
     if task is None:
         if len(sweeps) != 1:
@@ -60,4 +69,4 @@ def plot_bode(path, task, output):
     if estimate:
         title = f"{group.attrs.get('input', task)} -> {handle.attrs.get('output', '')}"
     top.set_title(title)
-    save(figure, output)
+    return figure

@@ -6,20 +6,23 @@ by how many neighbours shield it."""
 import numpy as np
 from matplotlib.patches import Circle
 
-from tcpmsim_plot.common import PlotError, open_file, plt, save, texts
+from tcpmsim_plot.common import PlotError, open_file, plt, save, text_attribute, texts
 
 
-def plot_bundle(path, bundle, at_time, output):
-    record = open_file(path, required="time")
-    try:
-        group = record[bundle]
-        temperature = group["temperature"][:] - 273.15
-        x, y = group["centre_x"][:] * 1e3, group["centre_y"][:] * 1e3
-        neighbours = group["neighbours"][:]
-        members = texts(group["temperature"].attrs["members"])
-    except KeyError as error:
-        raise PlotError(f"{path} has no record of a bundle '{bundle}': {error}") from error
-    time = record["time"][:]
+def bundle_figure(path, bundle, at_time=None):
+    """The figure of a bundle's cross-section at `at_time` (default: the end) and its members'
+    temperatures [degC]."""
+    with open_file(path, required="time") as record:
+        try:
+            group = record[bundle]
+            temperature = group["temperature"][:] - 273.15
+            x, y = group["centre_x"][:] * 1e3, group["centre_y"][:] * 1e3
+            neighbours = group["neighbours"][:]
+            members = texts(group["temperature"].attrs["members"])
+        except KeyError as error:
+            raise PlotError(f"{path} has no record of a bundle '{bundle}': {error}") from error
+        time = record["time"][:]
+        scenario = text_attribute(record, "scenario")
     index = len(time) - 1 if at_time is None else int(np.argmin(np.abs(time - at_time)))
 
     figure, (section, traces) = plt.subplots(1, 2, figsize=(11, 4.6), gridspec_kw={"width_ratios": [1, 1.5]})
@@ -53,6 +56,10 @@ def plot_bundle(path, bundle, at_time, output):
     traces.grid(True, alpha=0.3)
     traces.legend(fontsize=8)
     traces.set_title(f"{len(members)} members")
-    figure.suptitle(f"{record.attrs.get('scenario', '')}: {bundle}")
-    save(figure, output)
+    figure.suptitle(f"{scenario}: {bundle}")
+    return figure
+
+
+def plot_bundle(path, bundle, at_time, output):
+    save(bundle_figure(path, bundle, at_time), output)
 

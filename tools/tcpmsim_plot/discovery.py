@@ -5,7 +5,7 @@ import os
 
 import numpy as np
 
-from tcpmsim_plot.common import PlotError, dataset, display, open_file, plt, save, texts, units
+from tcpmsim_plot.common import PlotError, dataset, display_difference, open_file, plt, save, texts, units
 
 # The feature of the base residual each named effect should correlate with (its signature).
 SIGNATURE_FEATURE = {
@@ -38,10 +38,11 @@ def plot_residuals(handle, path, summary, output):
     for axis, channel in zip(axes[:, 0], channels):
         before = handle[f"residual/baseline/{channel}"]
         after = handle[f"residual/augmented/{channel}"]
-        values, unit = display(before[()], units(before))
+        # a residual is a difference: a temperature's in degC without the offset
+        values, unit = display_difference(before[()], units(before))
         axis.plot(time, values, lw=0.6, color="tab:red", label="base model")
         if effect:
-            values, _ = display(after[()], units(after))
+            values, _ = display_difference(after[()], units(after))
             axis.plot(time, values, lw=0.6, color="tab:blue", label=f"with {effect}")
         axis.axvspan(window[0], window[1], color="0.92", zorder=0, label="validation")
         axis.set_ylabel(f"{channel} residual [{unit}]")
@@ -73,14 +74,15 @@ def plot_diagnostic(handle, path, summary, output):
         axes[0].axvline(edge, color="k", ls=":", lw=0.8)
     axes[0].set_xlabel(f"correlation with the {channel} residual")
     frequency = group["loop_frequency"][()]
-    quadrature = group["loop_quadrature"][()]
+    quadrature, quadrature_unit = display_difference(group["loop_quadrature"][()],
+                                                     units(group["loop_quadrature"]))
     if len(frequency):
         axes[1].loglog(frequency, np.abs(quadrature), "o-")
         exponent = summary["diagnostics"]["outputs"][channel]["loop"]["exponent"]
         title = "loop area against frequency" + (f" ~ f^{exponent:.2f}" if exponent is not None else "")
         axes[1].set_title(title, fontsize=9)
     axes[1].set_xlabel("frequency [Hz]")
-    axes[1].set_ylabel(f"|quadrature residual| [{units(group['loop_quadrature'])}]")
+    axes[1].set_ylabel(f"|quadrature residual| [{quadrature_unit}]")
     if "cross_correlation" in group:
         for name, series in group["cross_correlation"].items():
             lags = np.arange(len(series)) - (len(series) - 1) // 2
