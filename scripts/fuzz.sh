@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets with clang (build-fuzz: ASan + UBSan + coverage) and runs each
 # for a bounded time, seeded from the shipped inputs: the scenario loader from configs/ (and a
-# few --set seeds), the measured-data CSV reader and the coil-sequence reader from data files.
+# few --set seeds), the measured-data CSV reader and the coil-sequence reader from data files,
+# the fit file with its data from fuzz/seeds/fuzz_fit/, the sweep file from configs/sweeps/.
 # New inputs that widen coverage go to build-fuzz/corpus/<target>; a crash, leak, hang (timeout)
 # or out-of-memory stops the script with the input saved as build-fuzz/<target>-crash-* (-leak-,
 # -timeout-, -oom-) and printed in base64, to become a regression input in fuzz/regressions/.
@@ -23,7 +24,7 @@ elif ! grep -q '^TCPMSIM_FUZZ:BOOL=ON' "$build/CMakeCache.txt"; then
   echo "fuzz: $build is not configured with TCPMSIM_FUZZ=ON" >&2
   exit 2
 fi
-targets=(fuzz_scenario fuzz_measured_csv fuzz_coil_sequence)
+targets=(fuzz_scenario fuzz_measured_csv fuzz_coil_sequence fuzz_fit fuzz_sweep)
 cmake --build "$build" -j"$(nproc)" --target "${targets[@]}"
 
 seeds() {  # the seed directory of a target, made afresh from the repository's inputs
@@ -40,6 +41,11 @@ seeds() {  # the seed directory of a target, made afresh from the repository's i
       printf 'time[s],power[W],deflection[mm],force[N]\n0,0.1,20,0.1\n0.0625,0.2,20.5,0.11\n' >"$dir/minimal.csv" ;;
     fuzz_coil_sequence)
       find data/coil-spring-inductance -name '*.csv' | head -n 5 | xargs -r cp -t "$dir" ;;
+    fuzz_fit)  # the fit file, "#data", then its measurement (fuzz/seeds/: 30 s of the ch. 7 bench)
+      cp fuzz/seeds/fuzz_fit/* "$dir"
+      { grep -v '^#' configs/discover/ch7_fit.yaml; } >"$dir/no_data.yaml" ;;
+    fuzz_sweep)
+      grep -l '^sweep:' configs/sweeps/*.yaml | xargs -r cp -t "$dir" ;;
   esac
   echo "$dir"
 }
