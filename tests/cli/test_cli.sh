@@ -27,6 +27,11 @@ config="$source_dir/configs/ch7_identification.yaml"
 
 expect 0 "--version" -- "$tcpmsim" --version
 contains "$work/out" "tcpmsim 0.1.0" "version names the program"
+# The commit a record names is the one the program was built from (a build after a commit
+# configures again): never the commit of an earlier configuration.
+if commit=$(git -C "$source_dir" rev-parse --short=12 HEAD 2>/dev/null); then
+  contains "$work/out" "($commit)" "version names the commit the program was built from"
+fi
 expect 0 "--help" -- "$tcpmsim" --help
 contains "$work/out" "run" "help lists the run command"
 expect 2 "no command is a usage error" -- "$tcpmsim"
