@@ -720,7 +720,10 @@ int main(int argc, char** argv) {
       ->add_option("--parameters", request.parameters,
                    "Base-model parameters to fit (default: thermal, SLS and coil laws')")
       ->delimiter(',');
-  discover_command->add_option("--effects", request.effects, "Candidates (default: all eight)")
+  discover_command
+      ->add_option(
+          "--effects", request.effects,
+          "Candidates (default: every family; tcpmsim kinds --discover-families lists them)")
       ->delimiter(',');
   discover_command
       ->add_option("--max-order", request.max_order,
