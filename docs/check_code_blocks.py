@@ -19,7 +19,8 @@ in their order:
   other excerpt's lines (but ``...`` lines; comments and spacing aside) must appear in that
   file in the same order.
 - ``text``, ``console``, ``none`` and ``output`` blocks show output; nothing runs them.
-- any other block must follow a MyST comment ``% not run: REASON`` on the line before it; the
+- any other block must follow a MyST comment ``% not run: REASON`` (or, in the README, which
+  GitHub shows, ``<!-- not run: REASON -->``) on the line before it; the
   same comment before a bash or python block skips it (a command that installs, or needs a
   cluster). The reasons are listed at the end.
 - ``% exit: N`` before a bash block: the block must end with exit code N (an error shown on
@@ -44,9 +45,12 @@ PYTHON = {"python", "py", "python3"}
 OUTPUT = {"text", "console", "none", "output", ""}
 LINKED = ["configs", "data", "examples", "python", "tools", "scripts", "tests", "bench"]
 FENCE = re.compile(r"^(\s*)(`{3,}|~{3,})\s*(\{code-block\}\s*)?([\w+-]*)")
-NOT_RUN = re.compile(r"^%\s*not run:\s*(.+)$")
-EXIT = re.compile(r"^%\s*exit:\s*(\d+)\s*$")
-OUTPUT_CHECK = re.compile(r"^%\s*output\s*$")
+# A MyST comment ("% not run: ...") or, where the page is also read on GitHub (the README), an
+# HTML comment ("<!-- not run: ... -->"), which neither shows.
+COMMENT = r"^(?:%\s*{0}|<!--\s*{0}\s*-->)$"
+NOT_RUN = re.compile(COMMENT.format(r"not run:\s*(.+?)"))
+EXIT = re.compile(COMMENT.format(r"exit:\s*(\d+)\s*"))
+OUTPUT_CHECK = re.compile(COMMENT.format(r"output\s*"))
 
 # Runs the page's Python blocks in one namespace: reads a block's length and text from stdin,
 # executes it, answers with a status line.
@@ -73,6 +77,13 @@ while True:
 """
 
 
+def comment_value(pattern, line):
+    """What a marker comment says (the reason, the exit code), whichever form it has; None
+    when `line` is not that marker."""
+    match = pattern.match(line)
+    return next((group for group in match.groups() if group is not None), "") if match else None
+
+
 class Block:
     def __init__(self, page, line, language, text, not_run, exit_code=0, checked_output=False):
         self.page, self.line, self.language, self.text, self.not_run = (
@@ -93,9 +104,9 @@ def blocks_of(page):
             continue
         indent, fence, _, language = match.groups()
         before = lines[index - 1].strip() if index > 0 else ""
-        reason = NOT_RUN.match(before).group(1) if NOT_RUN.match(before) else None
-        exit_code = int(EXIT.match(before).group(1)) if EXIT.match(before) else 0
-        checked_output = bool(OUTPUT_CHECK.match(before))
+        reason = comment_value(NOT_RUN, before)
+        exit_code = int(comment_value(EXIT, before) or 0)
+        checked_output = OUTPUT_CHECK.match(before) is not None
         body, index = [], index + 1
         while index < len(lines) and not lines[index].strip().startswith(fence):
             body.append(lines[index][len(indent):] if lines[index].startswith(indent) else lines[index])
