@@ -56,18 +56,28 @@ seeds() {  # the seed directory of a target, made afresh from the repository's i
 # fuzz/regressions/<target> holds every input fuzzing has found to fail: each is run first.
 # scripts/sanitizer_options.sh sets the sanitizers' options, with tests/lsan.supp.
 source scripts/sanitizer_options.sh
-for target in "${targets[@]}"; do
-  corpus=$build/corpus/$target
+fuzz_one() {  # fuzzes one target for its time; its log is $build/<target>.log
+  local target=$1 corpus=$build/corpus/$1 seed_dir regressions=()
   mkdir -p "$corpus"
   seed_dir=$(seeds "$target")
-  regressions=()
   [[ -d fuzz/regressions/$target ]] && regressions=("fuzz/regressions/$target")
   rm -f "$build/$target-"{crash,leak,timeout,oom}-*
-  log=$build/$target.log
   echo "fuzz: $target for ${seconds} s ($(ls "$seed_dir" | wc -l) seeds, $(ls "$corpus" | wc -l) in the corpus)"
   "$build/fuzz/$target" "$corpus" "$seed_dir" "${regressions[@]}" -max_total_time="$seconds" \
     -max_len=65536 -timeout=60 -rss_limit_mb=2048 -artifact_prefix="$build/$target-" \
-    -print_final_stats=1 "$@" >"$log" 2>&1 || true
+    -print_final_stats=1 "${fuzz_options[@]}" >"$build/$target.log" 2>&1 || true
+}
+# One target per core at a time: each libFuzzer process is single-threaded, so on two cores the
+# five targets take three rounds of their time instead of five.
+fuzz_options=("$@")
+for target in "${targets[@]}"; do
+  while (($(jobs -rp | wc -l) >= $(nproc))); do wait -n || true; done
+  fuzz_one "$target" &
+done
+wait
+for target in "${targets[@]}"; do
+  log=$build/$target.log
+  echo "fuzz: $target:"
   grep -E "^(#[0-9]+ +DONE|stat::number_of_executed_units|stat::peak_rss)|Done [0-9]+ runs" "$log" || true
   # A crash, a leak, a hang or running out of memory fails; a slow input (slow-unit) does not.
   for kind in crash leak timeout oom; do

@@ -8,8 +8,13 @@
 #   TCPMSIM_BUILD_TARGETS     only these targets (default: all, benchmarks included)
 #   TCPMSIM_TEST_FILES        only these test files of tests/ (a ;-list) in tcpmsim_tests
 #   TCPMSIM_TEST_EXCLUDE_FILES  these test files of tests/ (a ;-list) left out of tcpmsim_tests
+#   TCPMSIM_TEST_EXCLUDE      leave out the tests whose names match this regular expression
 #   TCPMSIM_FUZZ=ON           also build the libFuzzer targets and test their regression inputs
 #                             (needs CC=clang CXX=clang++; scripts/fuzz.sh can then fuzz this tree)
+# The sanitizer trees are compiled with clang unless CC and CXX say otherwise: the ASan tree
+# builds in 414 s against GCC's 880 s (a test file in 11.5 s against 20.2 s), runs its suite at
+# the same speed, and its records are bit-identical to the pinned ones. CC and CXX are read when a
+# tree is first configured; an existing tree keeps its compiler.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -20,9 +25,13 @@ case $sanitize in
   *) default_dir=build-sanitize; build_type=RelWithDebInfo ;;
 esac
 build_dir="${TCPMSIM_BUILD_DIR:-$default_dir}"
+if [[ $sanitize != OFF && -z ${CXX:-} ]]; then
+  export CC=clang CXX=clang++
+fi
 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE="$build_type" -DTCPMSIM_SANITIZE="$sanitize" -DTCPMSIM_BUILD_TESTS=ON \
   -DTCPMSIM_FUZZ="${TCPMSIM_FUZZ:-OFF}" -DTCPMSIM_TEST_FILES="${TCPMSIM_TEST_FILES:-}" \
   -DTCPMSIM_TEST_EXCLUDE_FILES="${TCPMSIM_TEST_EXCLUDE_FILES:-}"
 cmake --build "$build_dir" -j"$(nproc)" ${TCPMSIM_BUILD_TARGETS:+--target $TCPMSIM_BUILD_TARGETS}
 source scripts/sanitizer_options.sh
-ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)" ${TCPMSIM_TEST_FILTER:+-R "$TCPMSIM_TEST_FILTER"}
+ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)" ${TCPMSIM_TEST_FILTER:+-R "$TCPMSIM_TEST_FILTER"} \
+  ${TCPMSIM_TEST_EXCLUDE:+-E "$TCPMSIM_TEST_EXCLUDE"}
