@@ -226,20 +226,38 @@ std::string value_text(double value, int digits = 4) {
   return std::isfinite(value) ? number_text(value, digits) : "-";
 }
 
+// How a channel's values are printed: temperatures (K in records, SI) in degC as the plots
+// show them; differences of them (the steady-state error) stay in K, which is the same size.
+struct ShownUnit {
+  std::string unit;
+  double offset = 0.0;  // added to a value
+};
+
+ShownUnit shown_unit(const std::string& unit) {
+  if (unit == "K") return {"degC", -273.15};
+  return {unit, 0.0};
+}
+
 void report_steps(const RecordAnalysis& analysis, std::ostringstream& text) {
-  text << "step response of " << analysis.output << " [" << analysis.output_unit << "] against "
-       << analysis.reference << " [" << analysis.reference_unit << "]: " << analysis.steps.size()
+  const ShownUnit output = shown_unit(analysis.output_unit);
+  const ShownUnit reference = shown_unit(analysis.reference_unit);
+  const bool temperatures = output.offset != 0.0 || reference.offset != 0.0;
+  text << "step response of " << analysis.output << " [" << output.unit << "] against "
+       << analysis.reference << " [" << reference.unit << "]: " << analysis.steps.size()
        << " steps; rise " << analysis.step_options.rise.lower * 100 << "-"
        << analysis.step_options.rise.upper * 100 << " % of the step, settling into +-"
-       << analysis.step_options.settling_band * 100 << " % of the step around the final value\n";
+       << analysis.step_options.settling_band * 100 << " % of the step around the final value"
+       << (temperatures ? "; temperatures in degC, their differences in K" : "") << "\n";
   text << "  step at [s]   reference   final value   rise [s]   settling [s]   overshoot [%]"
           "   steady-state error   time constant [s]\n";
   for (const auto& step : analysis.steps) {
-    text << "  " << value_text(step.step_time, 6) << "   " << value_text(step.reference) << "   "
-         << value_text(step.final_value) << "   " << value_text(step.rise_time) << "   "
-         << value_text(step.settling_time) << "   " << value_text(step.overshoot * 100.0, 3)
-         << "   " << value_text(step.steady_state_error) << "   " << value_text(step.time_constant)
-         << (step.settled ? "" : " (not settled)") << "\n";
+    text << "  " << value_text(step.step_time, 6) << "   "
+         << value_text(step.reference + reference.offset) << "   "
+         << value_text(step.final_value + output.offset) << "   " << value_text(step.rise_time)
+         << "   " << value_text(step.settling_time) << "   "
+         << value_text(step.overshoot * 100.0, 3) << "   " << value_text(step.steady_state_error)
+         << "   " << value_text(step.time_constant) << (step.settled ? "" : " (not settled)")
+         << "\n";
   }
   for (const auto& step : analysis.steps) {
     if (step.settled) continue;

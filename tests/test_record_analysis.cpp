@@ -10,6 +10,7 @@
 #include "analysis/record_analysis.h"
 #include "sim/memory_run.h"
 #include "sim/run.h"
+#include "sim/value_check.h"
 #include "support/test_support.h"
 
 using namespace tcpmsim;
@@ -291,4 +292,26 @@ TEST_CASE("Two inputs that move together cannot be told apart, and analyze says 
   for (const auto& note : analysis.notes)
     notes += note.find("no frequency where the estimate stands out") != std::string::npos;
   CHECK(notes == 2);
+}
+
+TEST_CASE("A temperature's step is printed in degC, as the plots show it, and kept in K",
+          "[analyze]") {
+  // A 0.5 W step into C dT/dt = P - hA (T - T_amb), hA = 73 mW/K, T_amb = 23 degC: the
+  // temperature settles at 23 degC + 0.5 / 0.073 K = 29.849 degC (302.999 K).
+  const Scenario scenario =
+      load_scenario(source_path("configs/sweeps/thermal_step.yaml"), {}, shared_units());
+  AnalysisRequest request;
+  request.output = "muscle/temperature";
+  request.reference = "drive/power";
+  const RecordAnalysis analysis =
+      analyze_record(memory_record_channels(scenario, run_in_memory(scenario)), request);
+  REQUIRE(analysis.steps.size() == 1);
+  const double settled = 296.15 + 0.5 / 0.073;
+  CHECK(analysis.steps[0].final_value == Approx(settled).epsilon(1e-9));  // SI in the analysis
+  const std::string report = analysis_report(analysis);
+  CHECK_THAT(report, Catch::Contains("step response of muscle/temperature [degC] against "
+                                     "drive/power [W]") &&
+                         Catch::Contains("temperatures in degC, their differences in K"));
+  CHECK_THAT(report, Catch::Contains("   0.5   " + number_text(settled - 273.15, 4) + "   "));
+  CHECK(number_text(settled - 273.15, 4) == "29.85");
 }
