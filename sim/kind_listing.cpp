@@ -2,11 +2,15 @@
 
 #include <stdlib.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
 #include <map>
+#include <set>
 #include <sstream>
+
+#include <yaml-cpp/yaml.h>
 
 #include "sim/config/config_node.h"
 #include "sim/scenario.h"
@@ -90,13 +94,67 @@ std::vector<KeyRead> example_reads(const KindRegistry& kinds, const Kind& kind,
 }
 }  // namespace
 
+namespace {
+// The value an example gives the choice at `path` below its section ("mode" -> "duty"), read
+// from its text; "" where it is not a plain scalar there.
+std::string example_choice(const KindExample& example, const std::string& path) {
+  YAML::Node node = YAML::Load(example.text);
+  std::string rest = example.node + "." + path;
+  while (!rest.empty()) {
+    const std::size_t dot = rest.find('.');
+    const std::string part = rest.substr(0, dot);
+    rest = dot == std::string::npos ? "" : rest.substr(dot + 1);
+    if (part.find('[') != std::string::npos || !node.IsMap()) return "";
+    node = node[part];
+    if (!node) return "";
+  }
+  return node.IsScalar() ? node.Scalar() : "";
+}
+
+// What one example reads: its keys, and the value of each choice it makes.
+struct ExampleKeys {
+  std::set<std::string> keys;
+  std::map<std::string, std::string> choices;
+};
+
+// For a key that some examples read and others do not: the choice that decides it, made in
+// every example, in the key's section or one above it, and with other values where the key is
+// not read: "mode: duty" (or "mode: duty or current"); "" if none does.
+std::string deciding_choice(const std::string& key, const std::vector<ExampleKeys>& examples) {
+  std::vector<bool> reads;
+  for (const auto& example : examples) reads.push_back(example.keys.count(key) > 0);
+  if (std::all_of(reads.begin(), reads.end(), [](bool read) { return read; })) return "";
+  for (const auto& [choice, ignored] : examples.front().choices) {
+    const std::size_t dot = choice.rfind('.');
+    if (dot != std::string::npos && !under(key, choice.substr(0, dot))) continue;
+    std::set<std::string> with, without;
+    bool everywhere = true;
+    for (std::size_t i = 0; i < examples.size() && everywhere; ++i) {
+      const auto found = examples[i].choices.find(choice);
+      everywhere = found != examples[i].choices.end();
+      if (everywhere) (reads[i] ? with : without).insert(found->second);
+    }
+    if (!everywhere || with.empty()) continue;
+    bool apart = true;
+    for (const auto& value : with) apart = apart && !without.count(value);
+    if (!apart) continue;
+    std::string values;
+    for (const auto& value : with) values += (values.empty() ? "" : " or ") + value;
+    return choice + ": " + values;
+  }
+  return "";
+}
+}  // namespace
+
 std::vector<KindKey> kind_keys(const KindRegistry& kinds, const Kind& kind,
                                std::shared_ptr<const UnitSystem> units) {
   std::vector<KindKey> keys;
   std::map<std::string, std::size_t> seen;
+  std::vector<ExampleKeys> per_example;
   for (const auto& example : kind.examples) {
     std::vector<std::string> parts;              // sections below this one that another kind reads
     std::vector<std::string> optional_sections;  // sections asked for with has or find
+    ExampleKeys here;
     for (const auto& read : example_reads(kinds, kind, example, units)) {
       bool inside_part = false;
       for (const auto& part : parts) inside_part = inside_part || under(read.path, part);
@@ -106,6 +164,11 @@ std::vector<KindKey> kind_keys(const KindRegistry& kinds, const Kind& kind,
       if (read.expected.empty()) continue;
       const std::string key = generic(read.path);
       if (key == kinds.category(kind.category).selector) continue;  // said by the category
+      here.keys.insert(key);
+      if (read.expected.rfind("one of ", 0) == 0) {
+        if (const std::string value = example_choice(example, read.path); !value.empty())
+          here.choices[key] = value;
+      }
       const auto [found, added] = seen.try_emplace(key, keys.size());
       if (added) {
         std::string within;  // the innermost optional section holding the key
@@ -117,6 +180,12 @@ std::vector<KindKey> kind_keys(const KindRegistry& kinds, const Kind& kind,
         keys[found->second].optional = keys[found->second].optional || read.optional;
       }
     }
+    per_example.push_back(std::move(here));
+  }
+  // A key required in some examples only: required with the choice those examples make.
+  for (auto& key : keys) {
+    if (key.fallback.empty() && !key.optional && key.required_with.empty())
+      key.required_with = deciding_choice(key.key, per_example);
   }
   return keys;
 }

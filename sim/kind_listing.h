@@ -31,7 +31,9 @@ struct KindKey {
   std::string fallback;
   bool optional = false;
   // A key required only when the optional section above it is given ("inductance" for
-  // inductance.lambda_l: a muscle without self-sensing has neither).
+  // inductance.lambda_l: a muscle without self-sensing has neither), or only when a choice of
+  // the kind has these values ("mode: power" for a Joule drive's power: of power, duty and
+  // current, the mode's one is required).
   std::string required_with;
 };
 // Where an example's scenario is read from: `name` as given, or, when the example has files,

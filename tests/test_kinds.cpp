@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "identification/effect_catalogue.h"
@@ -99,6 +100,31 @@ TEST_CASE("docs/reference/kinds.md is the listing the registry produces") {
   // Regenerate with: build/tcpmsim kinds --markdown > docs/reference/kinds.md
   CHECK(written.str() ==
         describe_kinds(standard_kinds(), shared_units(), true, fit::describe_candidates));
+}
+
+TEST_CASE("The listing says which choice makes a key required, and not where none does") {
+  const KindRegistry& kinds = standard_kinds();
+  const auto required_with = [&](const std::string& category, const std::string& name) {
+    std::map<std::string, std::string> keys;
+    for (const auto& key : kind_keys(kinds, kinds.registered(category, name), shared_units()))
+      keys[key.key] = key.fallback.empty() && !key.optional ? key.required_with : "not required";
+    return keys;
+  };
+  // A Joule drive heats by power, duty or current: each mode reads its own command (and the
+  // duty mode the supply it switches), so of power, duty and current one is required.
+  const auto joule = required_with("drive", "joule");
+  CHECK(joule.at("mode") == "");
+  CHECK(joule.at("power") == "mode: power");
+  CHECK(joule.at("duty") == "mode: duty");
+  CHECK(joule.at("supply_voltage") == "mode: duty");
+  CHECK(joule.at("current") == "mode: current");
+  // A bundle's members have their own drives only when wired individually. Its examples also
+  // differ in how a member's resistance is given, but the wiring, a choice of another section,
+  // does not decide that.
+  const auto bundle = required_with("bundle", "parallel");
+  CHECK(bundle.at("electrical.drive.supply_voltage") == "electrical.wiring: individual");
+  CHECK(bundle.at("muscle.resistance.resistance") == "");
+  CHECK(bundle.at("count") == "");
 }
 
 namespace {
