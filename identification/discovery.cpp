@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <numeric>
 
+#include "identification/candidate_aliases.h"
 #include "identification/discovery_setup.h"
 #include "kinds/standard_kinds.h"
 #include "sim/not_a_number.h"
@@ -37,16 +38,6 @@ FitSpec respecified(const DiscoverSetup& setup, const std::vector<ParameterEstim
   spec.problem.model = std::make_shared<const Scenario>(
       load_scenario(setup.base.model_file, overrides, setup.units));
   return spec;
-}
-
-// sum_k sum_i a_k[i] b_k[i] / noise_k^2.
-double weighted_dot(const std::vector<std::vector<double>>& a,
-                    const std::vector<std::vector<double>>& b, const std::vector<double>& noise) {
-  double sum = 0.0;
-  for (std::size_t k = 0; k < a.size(); ++k) {
-    for (std::size_t i = 0; i < a[k].size(); ++i) sum += a[k][i] * b[k][i] / (noise[k] * noise[k]);
-  }
-  return sum;
 }
 
 std::vector<std::vector<double>> difference(const std::vector<std::vector<double>>& a,
@@ -103,6 +94,7 @@ void score(CandidateOutcome& outcome, const Baseline& base, const std::vector<do
   outcome.signature_match =
       change_norm * residual_norm > 0 ? projection / (change_norm * residual_norm) : 0.0;
   outcome.signature_z = change_norm > 0 ? projection / change_norm : 0.0;
+  outcome.validation_change = change;
   // Where the base model misses by more than the noise, an effect that closes only a sliver of
   // that gap is not what is missing, however significant its BIC: naming it would hide the rest.
   outcome.gap_closed =
@@ -389,6 +381,10 @@ Discovery discover(const DiscoverSetup& setup) {
       discovery.base_rounds = 2;
     }
   }
+
+  // Of candidates the data do not tell apart, the commonest effect is named.
+  name_first_of_aliases(outcomes, noise, setup.request.bic_threshold,
+                        setup.request.alias_correlation, effect_names());
 
   discovery.base = baseline.result;
   discovery.setup.base = baseline.spec;

@@ -46,6 +46,15 @@ struct CandidateOutcome {
   std::string signature;           // the diagnostic that should give it away
   std::string signature_evidence;  // that diagnostic's value on the base residual
   bool significant = false;
+  // The change d above, per output (not written to discovery.json).
+  std::vector<std::vector<double>> validation_change;
+  // Significant candidates the data do not tell from this one (identification/candidate_aliases.h).
+  struct Alias {
+    std::string name;
+    double correlation = 0.0;  // of the two changes, noise-weighted
+    double delta_bic = 0.0;    // its BIC against this one's
+  };
+  std::vector<Alias> aliases;
   double seconds = 0.0;  // wall time of its fit
 };
 

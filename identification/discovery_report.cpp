@@ -108,6 +108,20 @@ void write_structured_rest(std::ostream& out, const Discovery& discovery) {
   }
 }
 
+// The candidates the data do not tell from the verdict's, as a sentence; "" without any.
+std::string aliases_text(const CandidateOutcome& verdict) {
+  if (verdict.aliases.empty()) return "";
+  std::string names;
+  for (const auto& alias : verdict.aliases) {
+    if (!names.empty()) names += ", ";
+    names += alias.name + " (correlation " + text(alias.correlation, 3) + ", delta BIC " +
+             text(alias.delta_bic, 3) + ")";
+  }
+  return " The data do not tell it from " + names +
+         ": their changes to the outputs correlate, and no BIC difference reaches the threshold; "
+         "the verdict names the first of them in the catalogue's order, the commoner effect.";
+}
+
 }  // namespace
 
 std::string discovery_json(const Discovery& discovery) {
@@ -117,6 +131,11 @@ std::string discovery_json(const Discovery& discovery) {
   if (const auto* verdict = verdict_of(discovery)) {
     json["member"] = verdict->member;
     json["order"] = verdict->order;
+    json["aliases"] = nlohmann::json::array();
+    for (const auto& alias : verdict->aliases)
+      json["aliases"].push_back({{"effect", alias.name},
+                                 {"correlation", alias.correlation},
+                                 {"delta_bic", alias.delta_bic}});
   }
   json["model"] = discovery.setup.request.model_file;
   json["data"] = discovery.setup.request.data_file;
@@ -240,7 +259,8 @@ std::string discovery_summary(const Discovery& discovery) {
   if (const auto* verdict = verdict_of(discovery))
     out << " (" << verdict->member << "; validation gap shrinks by "
         << text(100 * verdict->gap_shrink, 3) << " %, " << text(100 * discovery.gap_closed, 3)
-        << " % of the gap above the noise floor closed)";
+        << " % of the gap above the noise floor closed)"
+        << (verdict->aliases.empty() ? "" : "." + aliases_text(*verdict));
   else if (discovery.kind == VerdictKind::none)
     out << " (the base model fits to the noise floor)";
   else
@@ -337,7 +357,7 @@ std::string discovery_report(const Discovery& discovery) {
     out << " (gap shrink " << text(100 * verdict->gap_shrink, 3) << " %). Form: " << verdict->member
         << ". " << verdict->signature << ": " << verdict->signature_evidence << ".";
     out << " The effect closes " << text(100 * discovery.gap_closed, 3)
-        << " % of the gap above the noise floor.\n";
+        << " % of the gap above the noise floor." << aliases_text(*verdict) << "\n";
   } else if (discovery.kind == VerdictKind::none) {
     out << "**none**: the base model fits to the noise floor (every output's validation RMSE is "
            "within "

@@ -17,12 +17,12 @@ struct DiscoverRequest {
   std::vector<std::string> parameters;  // the base model's fitted parameters; empty: default
   std::vector<std::string> effects;     // candidates tried; empty: the whole catalogue
   int max_order = 0;  // the highest model order tried within a family (elements, branches); 0: all
-  std::vector<std::string> overrides;   // --set on the model
-  double validate_from = 0.0;           // [s]: identification before, validation from here
-  int threads = 2;                      // candidates fitted at once
-  int starts = 8;                       // multistart points per fit
-  std::uint64_t seed = 1;               // of the multistart
-  double bic_threshold = 10.0;          // a candidate must lower the BIC by more than this,
+  std::vector<std::string> overrides;  // --set on the model
+  double validate_from = 0.0;          // [s]: identification before, validation from here
+  int threads = 2;                     // candidates fitted at once
+  int starts = 8;                      // multistart points per fit
+  std::uint64_t seed = 1;              // of the multistart
+  double bic_threshold = 10.0;         // a candidate must lower the BIC by more than this,
   double min_gap_shrink = 0.0;  // must not raise the validation RMSE (shrink by more than this),
   double min_signature = 3.0;   // and what it changes must explain the base model's validation
                                 // residual: its matched-filter z (see CandidateOutcome)
@@ -35,6 +35,10 @@ struct DiscoverRequest {
   // Where the base model misses by more than that, a significant candidate must also close this
   // share of the gap above the floor to be named (else the verdict is unexplained).
   double min_gap_closed = 0.2;
+  // Significant candidates within bic_threshold of the best whose validation changes correlate
+  // by at least this are aliases: the first in the catalogue's order is named
+  // (identification/candidate_aliases.h).
+  double alias_correlation = 0.9;
 };
 
 // The measurement, the base model and the fit problem discover works on, checked.

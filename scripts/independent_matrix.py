@@ -27,11 +27,15 @@ import json
 import os
 import statistics
 import sys
+import threading
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import independent_effects as ie  # noqa: E402
 from matrix_runs import declared_families, finish, parser_for, run, run_cases  # noqa: E402
+
+# --cases-at-once runs cases on threads; their data are generated one case at a time.
+GENERATOR_LOCK = threading.Lock()
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BASE = os.path.join(ROOT, "configs/discover/ch7_base.yaml")
@@ -104,11 +108,12 @@ def one_case(arguments, effect, form, noise_mn, seed):
                 and "verdict" in result):
             return result
     start = time.time()
-    case = ie.make_case(effect, seed, noise_mn, form=form, controls=arguments.controls,
-                        style=arguments.protocol)
-    data = os.path.join(directory, "measured.csv")
-    ie.write_case(case, data, truth_path=os.path.join(directory, "truth.npz"))
-    size = ie.effect_size(case)
+    with GENERATOR_LOCK:  # SciPy's LSODA solves one problem at a time in a process
+        case = ie.make_case(effect, seed, noise_mn, form=form, controls=arguments.controls,
+                            style=arguments.protocol)
+        data = os.path.join(directory, "measured.csv")
+        ie.write_case(case, data, truth_path=os.path.join(directory, "truth.npz"))
+        size = ie.effect_size(case)
     result = {"case": name, "effect": effect, "form": definition["form"], "noise_mN": noise_mn,
               "seed": seed, "definition": definition, "effect_size": size,
               "generate_seconds": time.time() - start}

@@ -11,6 +11,7 @@
 #include "identification/discovery.h"
 #include "identification/discovery_diagnostics.h"
 #include "identification/discovery_report.h"
+#include "sim/value_check.h"
 #include "tests/support/discover_data.h"
 #include "tests/support/test_support.h"
 
@@ -33,6 +34,21 @@ TEST_CASE("Data without a hidden effect give the verdict none") {
   CHECK(found.base.validation.rmse[0] < 1.2e-3);
   CHECK(found.diagnostics.outputs[0].whiteness.p_value > 1e-3);
   for (const auto& candidate : found.candidates) CHECK_FALSE(candidate.significant);
+  // A white residual needs no word beyond the verdict; one that is not white (as real data's
+  // is: no model is the data's law) gets the size of its structured part,
+  // sqrt(rmse^2 - floor^2), its share of the floor and what it follows, so that none is not
+  // read as "the residual is noise".
+  CHECK_THAT(fit::discovery_report(found), !Catch::Contains("is not white"));
+  fit::Discovery coloured = found;
+  coloured.diagnostics.outputs[0].whiteness.p_value = 2e-5;
+  const double rest = fit::structured_rms(found.base.validation.rmse[0], found.setup.floor[0]);
+  const std::string report = fit::discovery_report(coloured);
+  CHECK_THAT(report, Catch::Contains("The force residual is not white (Ljung-Box p = 2e-05): a "
+                                     "structured part of about " +
+                                     number_text(rest, 3) + " N RMS (" +
+                                     number_text(100 * rest / found.setup.floor[0], 3) +
+                                     " % of the floor)"));
+  CHECK_THAT(report, Catch::Contains("It follows, strongest first: "));
 }
 
 TEST_CASE("Every candidate nests the base model: its refit ends at or below the base fit's cost") {
