@@ -3,6 +3,7 @@
 #include "sim/block_preconditioner.h"
 #include "sim/forward_sensitivity.h"
 #include "sim/klu_solver.h"
+#include "sim/output_grid.h"
 #include "sim/serial_vector_kernels.h"
 #include "sim/time_grid.h"
 #include "sim/value_check.h"
@@ -107,13 +108,10 @@ namespace detail {
 class OutputGrid {
  public:
   OutputGrid(double t0, double t_end, double interval)
-      : t0_(t0), t_end_(t_end), interval_(interval) {
-    const auto last_on_grid =
-        static_cast<long>(std::floor((t_end - t0) / interval * (1.0 + 1e-12)));
-    const double last = t0 + static_cast<double>(last_on_grid) * interval;
-    const bool end_on_grid = std::abs(last - t_end) <= 1e-9 * std::max(1.0, std::abs(t_end));
-    count_ = last_on_grid + (end_on_grid ? 1 : 2);
-  }
+      : t0_(t0),
+        t_end_(t_end),
+        interval_(interval),
+        count_(static_cast<long>(output_sample_count(t0, t_end, interval))) {}
   bool done() const { return index_ >= count_; }
   void advance() { ++index_; }
   double time() const {
@@ -122,7 +120,8 @@ class OutputGrid {
 
  private:
   double t0_, t_end_, interval_;
-  long count_ = 0, index_ = 0;
+  long count_ = 0;
+  long index_ = 0;
 };
 
 // Where a run stands between calls of Integrator::advance.

@@ -10,6 +10,7 @@
 #include "sim/io/hdf5_files.h"
 #include "sim/io/hdf5_recorder.h"
 #include "sim/io/record_layout.h"
+#include "sim/output_grid.h"
 #include "sim/value_check.h"
 
 namespace tcpmsim {
@@ -17,8 +18,8 @@ namespace tcpmsim {
 RecordSize estimate_record_size(const Scenario& scenario) {
   const ScenarioSettings& settings = scenario.settings;
   RecordSize size;
-  size.samples =
-      std::floor((settings.duration - settings.output_start) / settings.output_interval) + 2.0;
+  size.samples = output_sample_count(std::max(0.0, settings.output_start), settings.duration,
+                                     settings.output_interval);
   size.columns = 1.0;
   for (const auto& series : record_layout(*scenario.system))
     size.columns += static_cast<double>(series.signal_indices.size());

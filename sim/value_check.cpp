@@ -47,13 +47,24 @@ ValueCheck ValueCheck::typical(double lower, double upper) const {
   return check;
 }
 
+namespace {
+// " N/m" after a value; nothing for a plain number.
+std::string unit_suffix(std::string_view unit) {
+  std::string suffix;
+  if (unit.empty() || unit == "1") return suffix;
+  suffix.push_back(' ');
+  suffix.append(unit.data(), unit.size());
+  return suffix;
+}
+}  // namespace
+
 bool ValueCheck::has_typical_range() const {
   return std::isfinite(typical_lower_) || std::isfinite(typical_upper_);
 }
 
 std::string ValueCheck::typical_text(std::string_view unit) const {
   if (!has_typical_range()) return {};
-  const std::string in_unit = unit.empty() || unit == "1" ? "" : " " + std::string(unit);
+  const std::string in_unit = unit_suffix(unit);
   return "typically " + number_text(typical_lower_) + " to " + number_text(typical_upper_) +
          in_unit;
 }
@@ -61,7 +72,7 @@ std::string ValueCheck::typical_text(std::string_view unit) const {
 std::string ValueCheck::implausibility(double value, std::string_view unit,
                                        const std::string& shown) const {
   if (!has_typical_range() || (value >= typical_lower_ && value <= typical_upper_)) return {};
-  const std::string in_unit = unit.empty() || unit == "1" ? "" : " " + std::string(unit);
+  const std::string in_unit = unit_suffix(unit);
   std::string message = shown + " is " + number_text(value) + in_unit +
                         ", outside the typical range (" + number_text(typical_lower_) + " to " +
                         number_text(typical_upper_) + in_unit +

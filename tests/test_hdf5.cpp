@@ -254,9 +254,14 @@ TEST_CASE(
   const Scenario scenario = scenario_from_text(physical_muscle_yaml());
   const RecordSize size = estimate_record_size(scenario);
   const Trace trace = simulate(scenario);
-  CHECK(size.samples >= static_cast<double>(trace.time.size()));
-  CHECK(size.samples <= static_cast<double>(trace.time.size()) + 1.0);
+  // Exactly the samples the run records: 0, 0.1, ..., 100 s is 1001.
+  CHECK(size.samples == 1001.0);
+  CHECK(size.samples == static_cast<double>(trace.time.size()));
   CHECK(size.columns == static_cast<double>(trace.channels.size()) + 1.0);
+  // An end off the output grid is recorded as a last sample of its own: 0, 0.3, ..., 99.9, 100.
+  const Scenario off_grid = scenario_from_text(physical_muscle_yaml(), {"output.rate=3.3333 Hz"});
+  CHECK(estimate_record_size(off_grid).samples ==
+        static_cast<double>(simulate(off_grid).time.size()));
   CHECK_NOTHROW(check_record_size(scenario, size.bytes()));
   CHECK_THROWS_WITH(check_record_size(scenario, size.bytes() / 2),
                     Catch::StartsWith("test.yaml:3:") && Catch::Contains("output.rate") &&
