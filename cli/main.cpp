@@ -355,23 +355,25 @@ int discover(const Options& options) {
   const auto written = tcpmsim::fit::write_discovery(
       directory, discovery,
       tcpmsim::file_provenance(options.invocation, {request.model_file}, request.overrides, units));
-  // The residuals before and after, and the diagnostic that gave the effect away. A picture
-  // that cannot be drawn is a warning: the analysis is written and stands without it.
-  bool drawn = false;
-  if (options.plots) {
-    const std::string command =
-        "'" + plot_tool() + "' discovery '" + directory + "' -o '" + directory + "'";
-    drawn = std::system(command.c_str()) == 0;
-    if (!drawn)
-      std::cerr << "tcpmsim: warning: the plots of " << directory << " could not be drawn ("
-                << command << "); the analysis is complete without them (--no-plots leaves "
-                << "them out)\n";
-  }
   if (!options.quiet) {
     std::cout << tcpmsim::fit::discovery_summary(discovery);
     for (const auto& file : written) std::cout << "wrote " << file << "\n";
-    if (drawn)
+  }
+  // The residuals before and after, and the diagnostic that gave the effect away, drawn by a
+  // child process: what this one printed goes out first, so that a pipe keeps the order. A
+  // picture that cannot be drawn is a warning: the analysis is written and stands without it.
+  if (options.plots) {
+    std::cout.flush();
+    std::cerr.flush();
+    const std::string command =
+        "'" + plot_tool() + "' discovery '" + directory + "' -o '" + directory + "'";
+    if (std::system(command.c_str()) != 0) {
+      std::cerr << "tcpmsim: warning: the plots of " << directory << " could not be drawn ("
+                << command << "); the analysis is complete without them (--no-plots leaves "
+                << "them out)\n";
+    } else if (!options.quiet) {
       std::cout << "wrote " << directory << "/residuals.png, " << directory << "/diagnostic.png\n";
+    }
   }
   switch (discovery.kind) {
     case tcpmsim::fit::VerdictKind::effect:
