@@ -82,6 +82,18 @@ std::string fit_summary(const FitSpec& spec, const FitResult& result) {
         << estimate.unit << "\n";
   }
   for (const auto& problem : result.identifiability) out << "  not identified: " << problem << "\n";
+  for (const auto& estimate : result.estimates) {
+    if (estimate.at_bound.empty()) continue;
+    out << "  at a bound: " << estimate.path << " ended on its " << estimate.at_bound << " bound, "
+        << number_text(estimate.value, 6) << " " << estimate.unit
+        << "; the optimum may lie beyond it (widen the bounds, or ask why the data push it "
+           "there)\n";
+  }
+  if (!result.converged) {
+    out << "  not converged: the fit stopped at its limit of " << spec.settings.max_iterations
+        << " iterations before a tolerance was met; the estimate is the best found (raise "
+           "max_iterations in the fit file)\n";
+  }
   out << window_lines(spec, "identification", spec.problem.identification, result.identification);
   if (!result.validation.rmse.empty())
     out << window_lines(spec, "validation", spec.problem.validation, result.validation);
@@ -94,12 +106,15 @@ std::string fit_json(const FitSpec& spec, const FitResult& result) {
   json["data"] = spec.data_file;
   json["parameters"] = nlohmann::json::array();
   for (const auto& estimate : result.estimates) {
-    json["parameters"].push_back({{"path", estimate.path},
-                                  {"unit", estimate.unit},
-                                  {"initial", estimate.initial},
-                                  {"estimate", estimate.value},
-                                  {"standard_error", number_or_null(estimate.standard_error)},
-                                  {"identifiable", estimate.identifiable}});
+    json["parameters"].push_back(
+        {{"path", estimate.path},
+         {"unit", estimate.unit},
+         {"initial", estimate.initial},
+         {"estimate", estimate.value},
+         {"standard_error", number_or_null(estimate.standard_error)},
+         {"identifiable", estimate.identifiable},
+         {"at_bound", estimate.at_bound.empty() ? nlohmann::json(nullptr)
+                                                : nlohmann::json(estimate.at_bound)}});
   }
   json["correlation"] = nlohmann::json::array();
   for (Eigen::Index i = 0; i < result.correlation.rows(); ++i) {
@@ -117,6 +132,8 @@ std::string fit_json(const FitSpec& spec, const FitResult& result) {
   json["iterations"] = result.iterations;
   json["simulations"] = result.simulations;
   json["termination"] = result.termination;
+  json["converged"] = result.converged;
+  json["max_iterations"] = spec.settings.max_iterations;
   json["gradient"] = result.gradient;
   return json.dump(2) + "\n";
 }

@@ -226,6 +226,8 @@ FitSpec load_fit(const std::string& file, const std::vector<std::string>& overri
     require_samples(root, "validation", validation, *data, 1, "scoring it");
   spec.settings.threads = threads;
   read_multistart(root, spec.settings);
+  spec.settings.max_iterations = static_cast<int>(root.integer_or(
+      "max_iterations", spec.settings.max_iterations, ValueCheck::between(1, 100000)));
   spec.settings.gradient = read_gradient(root, spec.problem);
   root.reject_unknown_keys();
   return spec;

@@ -235,11 +235,19 @@ class SimulationCost final : public ceres::CostFunction {
   mutable std::vector<double> last_jacobian_;
 };
 
+// Where an estimate (scaled to its bounds, [0, 1]) ended: "lower", "upper" or "" inside. The
+// bounded trust region projects its steps onto the bounds, so an estimate there sits on them.
+std::string bound_reached(double scaled) {
+  constexpr double kOnBound = 1e-9;
+  return scaled <= kOnBound ? "lower" : scaled >= 1.0 - kOnBound ? "upper" : "";
+}
+
 struct Refined {
   std::vector<double> theta;
   double cost = 0.0;
   int iterations = 0;
   std::string termination;
+  bool converged = true;
 };
 
 Refined refine(const FitProblem& problem, const Residuals& residuals, const FitSettings& settings,
@@ -267,7 +275,8 @@ Refined refine(const FitProblem& problem, const Residuals& residuals, const FitS
   return {theta, summary.final_cost, static_cast<int>(summary.iterations.size()),
           summary.message + " (" + std::to_string(summary.num_residual_evaluations) +
               " residual and " + std::to_string(summary.num_jacobian_evaluations) +
-              " Jacobian evaluations)"};
+              " Jacobian evaluations)",
+          summary.termination_type != ceres::NO_CONVERGENCE};
 }
 
 // The starting points: the model's own values, then `starts` Latin-hypercube points.
@@ -473,6 +482,7 @@ FitResult fit_model(const FitProblem& problem, const FitSettings& settings) {
   result.start_cost = costs[0];
   result.iterations = iterations;
   result.termination = best.termination;
+  result.converged = best.converged;
   result.gradient = gradient;
   const std::vector<double> values = physical(problem, best.theta.data());
   const Context context = problem.model->make_context();
@@ -480,7 +490,8 @@ FitResult fit_model(const FitProblem& problem, const FitSettings& settings) {
     const auto& parameter = problem.parameters[j];
     const double initial =
         settings.start.empty() ? context.parameter(parameter.path) : settings.start[j];
-    result.estimates.push_back({parameter.path, parameter.unit, initial, values[j], kNaN, true});
+    result.estimates.push_back({parameter.path, parameter.unit, initial, values[j], kNaN, true,
+                                bound_reached(best.theta[j])});
   }
   // The Jacobian at the estimate, per SI unit of each parameter.
   const SimulationCost cost(problem, residuals, settings, sensitivities);

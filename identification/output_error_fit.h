@@ -47,6 +47,9 @@ struct ParameterEstimate {
   double value = 0.0;
   double standard_error = 0.0;
   bool identifiable = true;
+  // "lower" or "upper" when the estimate ended on that bound, where the optimum may lie beyond
+  // it and its standard error means little; "" inside.
+  std::string at_bound;
 };
 
 // How well the model fits the measurement in a window, per output: RMSE [unit], NRMSE (RMSE
@@ -71,6 +74,9 @@ struct FitResult {
   int iterations = 0;
   int simulations = 0;
   std::string termination;
+  // false when Levenberg-Marquardt stopped at its iteration limit (max_iterations) before any
+  // of its tolerances was met: the estimate is the best found, not an optimum.
+  bool converged = true;
   // How the Jacobian was computed: "forward sensitivities (CVODES)", or "finite differences"
   // with the reason sensitivities were not used.
   std::string gradient;

@@ -219,6 +219,42 @@ TEST_CASE("Parameters the data cannot identify are named, never returned as numb
   CHECK(result.estimates[2].value == Approx(7.2e-3).epsilon(0.01));
 }
 
+TEST_CASE("An estimate on its bound, and a fit stopped at its iteration limit, say so") {
+  // The data hold Table 7.2's k1 = 10.8 N/m; bounds of [5, 10] N/m keep the fit below it, so
+  // k1 ends on its upper bound (and kappa_P, free inside its bounds, off them).
+  const std::string data = protocol_measurement(1e-3, 3);
+  fit::FitSpec spec;
+  spec.model_file = "ch7_base.yaml";
+  spec.data_file = data;
+  spec.problem = base_problem(data, {"muscle.mechanics.k1", "muscle.thermal_force.kappa_P"});
+  spec.problem.parameters[0].lower = 5.0;
+  spec.problem.parameters[0].upper = 10.0;
+  spec.settings.starts = 0;
+  spec.settings.start = {8.0, 7.2e-3};
+  const fit::FitResult bounded = fit::fit_model(spec.problem, spec.settings);
+  CHECK(bounded.estimates[0].value == 10.0);
+  CHECK(bounded.estimates[0].at_bound == "upper");
+  CHECK(bounded.estimates[1].at_bound == "");
+  CHECK(bounded.converged);
+  CHECK_THAT(fit::fit_summary(spec, bounded),
+             Catch::Contains("at a bound: muscle.mechanics.k1 ended on its upper bound, 10 N/m; "
+                             "the optimum may lie beyond it"));
+  CHECK_THAT(fit::fit_json(spec, bounded), Catch::Contains("\"at_bound\": \"upper\"") &&
+                                               Catch::Contains("\"at_bound\": null") &&
+                                               Catch::Contains("\"converged\": true"));
+  // One iteration from 20 % off is not enough: the fit says it did not converge.
+  spec.problem = base_problem(data, {"muscle.mechanics.k1", "muscle.mechanics.k2"});
+  spec.settings.start = {0.8 * 10.8, 1.2 * 2.7};
+  spec.settings.max_iterations = 1;
+  const fit::FitResult stopped = fit::fit_model(spec.problem, spec.settings);
+  CHECK_FALSE(stopped.converged);
+  CHECK(stopped.iterations <= 2);  // Ceres counts the start as its iteration 0
+  CHECK_THAT(fit::fit_summary(spec, stopped),
+             Catch::Contains("not converged: the fit stopped at its limit of 1 iterations"));
+  CHECK_THAT(fit::fit_json(spec, stopped),
+             Catch::Contains("\"converged\": false") && Catch::Contains("\"max_iterations\": 1"));
+}
+
 TEST_CASE("A parameter the summary calls not identified is not identifiable in the estimates") {
   // The deflection moves by 0.5 mm around 20 mm: force_offset and k1 x are told apart by the
   // step alone, so the two are correlated above 0.99 yet within the Jacobian's rank. Their
@@ -228,7 +264,8 @@ TEST_CASE("A parameter the summary calls not identified is not identifiable in t
       "load.deflection={type: steps, initial: 20 mm, times: [150 s], values: [20.5 mm]}"};
   const std::string data = protocol_measurement(1e-3, 12, hold);
   fit::FitProblem problem = base_problem(
-      data, {"muscle.mechanics.force_offset", "muscle.mechanics.k1", "muscle.thermal_force.kappa_P"},
+      data,
+      {"muscle.mechanics.force_offset", "muscle.mechanics.k1", "muscle.thermal_force.kappa_P"},
       hold);
   fit::FitSettings settings;
   settings.starts = 0;
@@ -274,6 +311,8 @@ parameters: [{path: muscle.mechanics.k1, bounds: [5 N/m, 20 N/m]}]
 identification: [0 s, 400 s]
 )";
   CHECK(fit_file_error(valid, data) == "no error");
+  CHECK(fit_file_error(valid + "max_iterations: 0\n", data)
+            .starts_with(file + ":5:17: error: max_iterations: "));
   CHECK(fit_file_error(replaced(valid, "muscle.mechanics.k1", "muscle.mechanics.k3"), data) ==
         file +
             ":3:21: error: parameters[0].path: the model has no parameter 'muscle.mechanics.k3'");
