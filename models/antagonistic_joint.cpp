@@ -1,4 +1,5 @@
 #include "models/antagonistic_joint.h"
+#include "models/typical_values.h"
 
 #include <cmath>
 #include <limits>
@@ -40,9 +41,10 @@ std::unique_ptr<AntagonisticJoint> AntagonisticJoint::from_config(
   using P = AntagonisticJointParameters;
   P p;
   ParameterBindings<P> bind;
-  bind.quantity(node, "radius", "m", ValueCheck::positive(), p,
+  bind.quantity(node, "radius", "m", typical::joint_radius(ValueCheck::positive()), p,
                 [](P& v) -> double& { return v.geometry.radius; });
-  bind.quantity(node, "inertia", "kg*m^2", ValueCheck::positive(), p, bind.member(&P::inertia));
+  bind.quantity(node, "inertia", "kg*m^2", typical::inertia(ValueCheck::positive()), p,
+                bind.member(&P::inertia));
   bind.quantity_or(node, "damping", "N*m*s/rad", 0.0, ValueCheck::non_negative(), p,
                    bind.member(&P::damping));
   if (const auto spring = node.find("spring")) {

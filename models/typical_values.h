@@ -72,4 +72,28 @@ inline ValueCheck wire_diameter(ValueCheck check) {
   return check.typical(1e-6, 0.05);
 }  // m
 
+// What effects, bundles and joints add (models/effects, models/bundle, the antagonistic joint):
+// sizes of the same muscles, each with zero allowed where zero switches the term off.
+inline ValueCheck added_conductance(ValueCheck check) {
+  return check.typical(0.0, 1.0);
+}  // W/K: an extra heat loss, up to a fan's
+inline ValueCheck time_constant(ValueCheck check) {
+  return check.typical(0.01, 1e5);
+}  // s: a relaxation, a lag or a spin-up, from the SLS's seconds to a day's warm-up
+inline ValueCheck muscle_length(ValueCheck check) {
+  return check.typical(1e-6, 1.0);
+}  // m: a radius, a knee's width, a deflection along a muscle
+inline ValueCheck effect_force(ValueCheck check) {
+  return check.typical(0.0, 5.0);
+}  // N: a friction's saturation, as the force offset
+inline ValueCheck fibre_pitch(ValueCheck check) {
+  return check.typical(1e-5, 0.1);
+}  // m: the spacing of a bundle's muscles
+inline ValueCheck joint_radius(ValueCheck check) {
+  return check.typical(1e-4, 1.0);
+}  // m: a pulley's radius (10 mm in configs/pair)
+inline ValueCheck inertia(ValueCheck check) {
+  return check.typical(1e-10, 10.0);
+}  // kg*m^2: a joint's rotor
+
 }  // namespace tcpmsim::typical

@@ -71,3 +71,24 @@ TEST_CASE("A slip downwards and a --set are caught the same way") {
   CHECK(cold.warnings.front().find("typical range (230 to 600 K)") != std::string::npos);
   CHECK(cold.warnings.front().find("check its unit and its size") != std::string::npos);
 }
+
+TEST_CASE("An effect's, a bundle's and a joint's sizes have typical ranges too") {
+  const std::string table_7_2 =
+      muscle_with("{k1: 10.8 mN/mm, k2: 2.7 mN/mm, damping: 4.3 mN*s/mm, force_offset: 0.1069 N}");
+  // A friction element of 20 mN/mm written in N/mm: 20 000 N/m, 1000 times the typical.
+  const Scenario slipped =
+      load(table_7_2, {"muscle.effects=[{type: hysteresis, stiffness: 20 N/mm, force: 5 mN}]"});
+  REQUIRE(slipped.warnings.size() == 1);
+  CHECK(slipped.warnings.front().find("muscle.effects[0].stiffness") != std::string::npos);
+  CHECK(slipped.warnings.front().find("1/1000 of it, 20 N/m, would be typical") !=
+        std::string::npos);
+  // A relaxation time in ms where s was meant: 20 ms is typical, so no word; 20 ks for 20 s
+  // written with a prefix too many is 1000 times it and within a day, so neither warns. A
+  // branch of 20 Ms is.
+  const Scenario slow =
+      load(table_7_2, {"muscle.effects=[{type: maxwell_branch, stiffness: 1.5 mN/mm, "
+                       "time_constant: 20 Ms}]"});
+  REQUIRE(slow.warnings.size() == 1);
+  CHECK(slow.warnings.front().find("muscle.effects[0].time_constant") != std::string::npos);
+  CHECK(slow.warnings.front().find("typical range (0.01 to 100000 s)") != std::string::npos);
+}

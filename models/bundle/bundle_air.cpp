@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "models/laws/packing.h"
+#include "models/typical_values.h"
 #include "sim/context.h"
 
 namespace tcpmsim {
@@ -37,13 +38,15 @@ std::unique_ptr<BundleAir> BundleAir::from_config(const std::string& group, cons
   bind.quantity(node, "shielding", "1", ValueCheck::fraction(), p,
                 bind.member(&BundleAirParameters::shielding));
   const bool contact = node.has("contact_conductance");
-  bind.quantity_or(node, "contact_conductance", "W/K", 0.0, ValueCheck::non_negative(), p,
+  bind.quantity_or(node, "contact_conductance", "W/K", 0.0,
+                   typical::added_conductance(ValueCheck::non_negative()), p,
                    bind.member(&BundleAirParameters::contact_conductance));
   std::unique_ptr<Signal> speed;
   Fan kind = Fan::none;
   if (const auto fan = node.find("fan")) {
     fan->declare({"conductance", "speed"});
-    bind.quantity(*fan, "conductance", "W/K", ValueCheck::non_negative(), p,
+    bind.quantity(*fan, "conductance", "W/K",
+                  typical::added_conductance(ValueCheck::non_negative()), p,
                   bind.member(&BundleAirParameters::fan_conductance));
     const ConfigNode speed_node = fan->at("speed");
     kind = speed_node.is_word("controller") ? Fan::commanded : Fan::prescribed;

@@ -10,6 +10,7 @@
 #include "models/bundle/parameter_spread.h"
 #include "models/laws/packing.h"
 #include "models/muscle.h"
+#include "models/typical_values.h"
 #include "sim/scenario_builder.h"
 
 namespace tcpmsim {
@@ -45,7 +46,8 @@ BundleCrossSection read_cross_section(const ConfigNode& node, int count) {
   const PackingLayout layout = node.choice("layout", {"hexagonal", "square"}) == "square"
                                    ? PackingLayout::square
                                    : PackingLayout::hexagonal;
-  return packing::cross_section(layout, count, node.quantity("pitch", "m", ValueCheck::positive()));
+  return packing::cross_section(
+      layout, count, node.quantity("pitch", "m", typical::fibre_pitch(ValueCheck::positive())));
 }
 
 struct Bundle {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "models/inductance/parallel_coils.h"
+#include "models/typical_values.h"
 
 namespace tcpmsim {
 
@@ -75,13 +76,14 @@ std::shared_ptr<const NeighbourMutual> NeighbourMutual::from_config(const Config
   const ConfigNode coil = node.at("coil");
   coil.declare({"radius", "turns", "length", "wire_diameter"});
   inductance::CoilGeometry geometry;
-  geometry.radius = coil.quantity("radius", "m", ValueCheck::positive());
+  geometry.radius = coil.quantity("radius", "m", typical::coil_radius(ValueCheck::positive()));
   geometry.turns = coil.number(
       "turns",
       ValueCheck::count(kMaxTurns, "the table of M(x) sums an integral per ring offset at " +
                                        std::to_string(2 * kNodes - 1) + " lengths"));
-  geometry.length = coil.quantity("length", "m", ValueCheck::positive());
-  geometry.wire_diameter = coil.quantity("wire_diameter", "m", ValueCheck::positive());
+  geometry.length = coil.quantity("length", "m", typical::muscle_length(ValueCheck::positive()));
+  geometry.wire_diameter =
+      coil.quantity("wire_diameter", "m", typical::wire_diameter(ValueCheck::positive()));
   if (!(separation > 2.0 * geometry.radius + geometry.wire_diameter)) {
     coil.at("radius").fail(
         "neighbouring coils at the packing pitch would overlap: the pitch must "

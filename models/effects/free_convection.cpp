@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "models/typical_values.h"
+
 namespace tcpmsim {
 
 FreeConvection::FreeConvection(std::string group, FreeConvectionParameters defaults,
@@ -14,8 +16,8 @@ std::unique_ptr<FreeConvection> FreeConvection::from_config(const std::string& g
   node.declare({"type", "name", "conductance", "reference_difference", "exponent"});
   P p;
   ParameterBindings<P> bind;
-  bind.quantity(node, "conductance", "W/K", ValueCheck::non_negative(), p,
-                bind.member(&P::conductance));
+  bind.quantity(node, "conductance", "W/K", typical::added_conductance(ValueCheck::non_negative()),
+                p, bind.member(&P::conductance));
   bind.quantity(node, "reference_difference", "K", ValueCheck::positive(), p,
                 bind.member(&P::reference_difference));
   if (node.has("exponent"))

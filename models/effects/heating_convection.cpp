@@ -1,5 +1,7 @@
 #include "models/effects/heating_convection.h"
 
+#include "models/typical_values.h"
+
 namespace tcpmsim {
 
 HeatingConvection::HeatingConvection(std::string group, HeatingConvectionParameters defaults,
@@ -12,8 +14,8 @@ std::unique_ptr<HeatingConvection> HeatingConvection::from_config(const std::str
   node.declare({"type", "name", "conductance", "reference_power", "time_constant"});
   P p;
   ParameterBindings<P> bind;
-  bind.quantity(node, "conductance", "W/K", ValueCheck::non_negative(), p,
-                bind.member(&P::conductance));
+  bind.quantity(node, "conductance", "W/K", typical::added_conductance(ValueCheck::non_negative()),
+                p, bind.member(&P::conductance));
   bind.quantity(node, "reference_power", "W", ValueCheck::positive(), p,
                 bind.member(&P::reference_power));
   bind.quantity_or(node, "time_constant", "s", 0.0, ValueCheck::non_negative(), p,

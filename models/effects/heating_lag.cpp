@@ -1,5 +1,7 @@
 #include "models/effects/heating_lag.h"
 
+#include "models/typical_values.h"
+
 namespace tcpmsim {
 
 HeatingLag::HeatingLag(std::string group, HeatingLagParameters defaults,
@@ -13,7 +15,7 @@ std::unique_ptr<HeatingLag> HeatingLag::from_config(const std::string& group,
   P p;
   ParameterBindings<P> bind;
   bind.quantity(node, "share", "1", ValueCheck::fraction(), p, bind.member(&P::share));
-  bind.quantity(node, "time_constant", "s", ValueCheck::positive(), p,
+  bind.quantity(node, "time_constant", "s", typical::time_constant(ValueCheck::positive()), p,
                 bind.member(&P::time_constant));
   return std::make_unique<HeatingLag>(group, p, std::move(bind));
 }

@@ -1,5 +1,7 @@
 #include "models/effects/hysteresis.h"
 
+#include "models/typical_values.h"
+
 namespace tcpmsim {
 
 Hysteresis::Hysteresis(std::string group, HysteresisParameters defaults,
@@ -13,14 +15,16 @@ std::unique_ptr<Hysteresis> Hysteresis::from_config(const std::string& group,
   P p;
   ParameterBindings<P> bind;
   // A zero weight carries no force (discover's candidates start there).
-  bind.quantity(node, "stiffness", "N/m", ValueCheck::non_negative(), p,
+  bind.quantity(node, "stiffness", "N/m", typical::added_stiffness(ValueCheck::non_negative()), p,
                 bind.member(&P::stiffness));
   if (node.has("force") && node.has("radius"))
     node.at("radius").fail("give force or radius (= force / stiffness), not both");
   if (node.has("radius"))
-    bind.quantity(node, "radius", "m", ValueCheck::positive(), p, bind.member(&P::radius));
+    bind.quantity(node, "radius", "m", typical::muscle_length(ValueCheck::positive()), p,
+                  bind.member(&P::radius));
   else
-    bind.quantity(node, "force", "N", ValueCheck::positive(), p, bind.member(&P::force));
+    bind.quantity(node, "force", "N", typical::effect_force(ValueCheck::positive()), p,
+                  bind.member(&P::force));
   bind.quantity_or(node, "follower_time", "s", 0.01, ValueCheck::positive(), p,
                    bind.member(&P::follower_time));
   return std::make_unique<Hysteresis>(group, p, std::move(bind));

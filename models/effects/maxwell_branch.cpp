@@ -1,6 +1,7 @@
 #include "models/effects/maxwell_branch.h"
 
 #include "models/laws/sls.h"
+#include "models/typical_values.h"
 
 namespace tcpmsim {
 
@@ -16,16 +17,17 @@ std::unique_ptr<MaxwellBranch> MaxwellBranch::from_config(const std::string& gro
   ParameterBindings<P> bind;
   // Zero stiffness is allowed: a branch that carries no force (discover's candidates start there,
   // where the augmented model is the base model).
-  bind.quantity(node, "stiffness", "N/m", ValueCheck::non_negative(), p,
+  bind.quantity(node, "stiffness", "N/m", typical::added_stiffness(ValueCheck::non_negative()), p,
                 bind.member(&P::stiffness));
   if (node.has("damping") && node.has("time_constant"))
     node.at("time_constant")
         .fail("give damping or time_constant (= damping / stiffness), not both");
   if (node.has("time_constant")) {
-    bind.quantity(node, "time_constant", "s", ValueCheck::positive(), p,
+    bind.quantity(node, "time_constant", "s", typical::time_constant(ValueCheck::positive()), p,
                   bind.member(&P::time_constant));
   } else {
-    bind.quantity(node, "damping", "N*s/m", ValueCheck::positive(), p, bind.member(&P::damping));
+    bind.quantity(node, "damping", "N*s/m", typical::damping(ValueCheck::positive()), p,
+                  bind.member(&P::damping));
   }
   return std::make_unique<MaxwellBranch>(group, p, std::move(bind));
 }

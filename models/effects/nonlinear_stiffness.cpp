@@ -1,6 +1,7 @@
 #include "models/effects/nonlinear_stiffness.h"
 
 #include "models/effects/hysteresis.h"
+#include "models/typical_values.h"
 
 namespace tcpmsim {
 
@@ -16,7 +17,8 @@ std::unique_ptr<NonlinearStiffness> NonlinearStiffness::from_config(const std::s
   ParameterBindings<P> bind;
   bind.quantity(node, "stiffness", "N/m", {}, p, bind.member(&P::stiffness));
   bind.quantity(node, "knee_deflection", "m", {}, p, bind.member(&P::knee_deflection));
-  bind.quantity(node, "knee_width", "m", ValueCheck::positive(), p, bind.member(&P::knee_width));
+  bind.quantity(node, "knee_width", "m", typical::muscle_length(ValueCheck::positive()), p,
+                bind.member(&P::knee_width));
   bind.quantity_or(node, "follower_time", "s", 0.01, ValueCheck::positive(), p,
                    bind.member(&P::follower_time));
   return std::make_unique<NonlinearStiffness>(group, p, std::move(bind));

@@ -1,5 +1,7 @@
 #include "models/effects/ratchet.h"
 
+#include "models/typical_values.h"
+
 namespace tcpmsim {
 
 Ratchet::Ratchet(std::string group, RatchetParameters defaults,
@@ -12,7 +14,8 @@ std::unique_ptr<Ratchet> Ratchet::from_config(const std::string& group, const Co
   P p;
   ParameterBindings<P> bind;
   bind.quantity(node, "rate", "N/(K*s)", ValueCheck::non_negative(), p, bind.member(&P::rate));
-  bind.quantity(node, "threshold", "K", ValueCheck::positive(), p, bind.member(&P::threshold));
+  bind.quantity(node, "threshold", "K", typical::temperature(ValueCheck::positive()), p,
+                bind.member(&P::threshold));
   return std::make_unique<Ratchet>(group, p, std::move(bind));
 }
 

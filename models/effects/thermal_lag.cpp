@@ -1,5 +1,7 @@
 #include "models/effects/thermal_lag.h"
 
+#include "models/typical_values.h"
+
 namespace tcpmsim {
 
 ThermalLag::ThermalLag(std::string group, ThermalLagParameters defaults,
@@ -12,9 +14,9 @@ std::unique_ptr<ThermalLag> ThermalLag::from_config(const std::string& group,
   node.declare({"type", "name", "heat_capacity", "conductance"});
   P p;
   ParameterBindings<P> bind;
-  bind.quantity(node, "heat_capacity", "J/K", ValueCheck::positive(), p,
+  bind.quantity(node, "heat_capacity", "J/K", typical::heat_capacity(ValueCheck::positive()), p,
                 bind.member(&P::heat_capacity));
-  bind.quantity(node, "conductance", "W/K", ValueCheck::positive(), p,
+  bind.quantity(node, "conductance", "W/K", typical::conductance(ValueCheck::positive()), p,
                 bind.member(&P::conductance));
   return std::make_unique<ThermalLag>(group, p, std::move(bind));
 }

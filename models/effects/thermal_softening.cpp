@@ -1,5 +1,7 @@
 #include "models/effects/thermal_softening.h"
 
+#include "models/typical_values.h"
+
 namespace tcpmsim {
 
 ThermalSoftening::ThermalSoftening(std::string group, ThermalSofteningParameters defaults,
@@ -13,11 +15,12 @@ std::unique_ptr<ThermalSoftening> ThermalSoftening::from_config(const std::strin
                 "reference_temperature", "stiffness_slope", "stiffness_curvature"});
   P p;
   ParameterBindings<P> bind;
-  bind.quantity(node, "reference_stiffness", "N/m", ValueCheck::non_negative(), p,
+  bind.quantity(node, "reference_stiffness", "N/m",
+                typical::added_stiffness(ValueCheck::non_negative()), p,
                 bind.member(&P::reference_stiffness));
   bind.quantity(node, "temperature_coefficient", "1/K", {}, p,
                 bind.member(&P::temperature_coefficient));
-  bind.quantity(node, "reference_temperature", "K", ValueCheck::positive(), p,
+  bind.quantity(node, "reference_temperature", "K", typical::temperature(ValueCheck::positive()), p,
                 bind.member(&P::reference_temperature));
   if (node.has("stiffness_slope"))
     bind.quantity(node, "stiffness_slope", "N/(m*K)", {}, p, bind.member(&P::stiffness_slope));
