@@ -38,10 +38,12 @@ std::string generic(const std::string& key) {
 std::string row(const KindKey& key, bool markdown) {
   std::string range = key.check.empty() ? "" : key.check;
   const std::string within = markdown ? "`" + key.required_with + "`" : key.required_with;
-  const std::string fallback = !key.fallback.empty()        ? "default " + key.fallback
-                               : key.optional               ? "optional"
-                               : !key.required_with.empty() ? "required with " + within
-                                                            : "required";
+  const std::string without = markdown ? "`" + key.required_without + "`" : key.required_without;
+  const std::string fallback = !key.fallback.empty()           ? "default " + key.fallback
+                               : key.optional                  ? "optional"
+                               : !key.required_with.empty()    ? "required with " + within
+                               : !key.required_without.empty() ? "required without " + without
+                                                               : "required";
   std::ostringstream line;
   if (markdown) {
     line << "| `" << key.key << "` | " << key.expected << " | " << range << " | " << fallback
@@ -113,17 +115,34 @@ std::string example_choice(const KindExample& example, const std::string& path) 
 
 // What one example reads: its keys, and the value of each choice it makes.
 struct ExampleKeys {
+  std::string node;  // the section the example shows
   std::set<std::string> keys;
   std::map<std::string, std::string> choices;
 };
+
+// Whether the examples show one section (their keys compare): a kind may also be shown through
+// parts of its section read elsewhere (a thermal form's muscle.thermal).
+bool one_section(const std::vector<ExampleKeys>& examples) {
+  return std::all_of(examples.begin(), examples.end(), [&](const ExampleKeys& example) {
+    return example.node == examples.front().node;
+  });
+}
+
+// Which examples read `key`.
+std::vector<bool> readers(const std::string& key, const std::vector<ExampleKeys>& examples) {
+  std::vector<bool> reads;
+  for (const auto& example : examples) reads.push_back(example.keys.count(key) > 0);
+  return reads;
+}
 
 // For a key that some examples read and others do not: the choice that decides it, made in
 // every example, in the key's section or one above it, and with other values where the key is
 // not read: "mode: duty" (or "mode: duty or current"); "" if none does.
 std::string deciding_choice(const std::string& key, const std::vector<ExampleKeys>& examples) {
-  std::vector<bool> reads;
-  for (const auto& example : examples) reads.push_back(example.keys.count(key) > 0);
-  if (std::all_of(reads.begin(), reads.end(), [](bool read) { return read; })) return "";
+  const std::vector<bool> reads = readers(key, examples);
+  if (!one_section(examples) ||
+      std::all_of(reads.begin(), reads.end(), [](bool read) { return read; }))
+    return "";
   for (const auto& [choice, ignored] : examples.front().choices) {
     const std::size_t dot = choice.rfind('.');
     if (dot != std::string::npos && !under(key, choice.substr(0, dot))) continue;
@@ -144,6 +163,33 @@ std::string deciding_choice(const std::string& key, const std::vector<ExampleKey
   }
   return "";
 }
+// "mechanics" for "mechanics.k1", "" for "k1" and "range[]".
+std::string parent_section(const std::string& key) {
+  const std::size_t dot = key.rfind('.');
+  return dot == std::string::npos ? "" : key.substr(0, dot);
+}
+
+// For a key some examples read: the first other required key, of its own section or the
+// section the key names (a scalar or its section), that exactly the other examples read; by
+// its name in the section ("range" for "range[]"); "" if none.
+std::string alternative(const std::string& key, const std::vector<KindKey>& keys,
+                        const std::vector<ExampleKeys>& examples) {
+  const std::vector<bool> reads = readers(key, examples);
+  if (!one_section(examples) ||
+      std::all_of(reads.begin(), reads.end(), [](bool read) { return read; }))
+    return "";
+  for (const auto& other : keys) {
+    if (other.key == key || other.optional || !other.fallback.empty()) continue;
+    if (parent_section(other.key) != parent_section(key) && !under(other.key, key) &&
+        !under(key, other.key))
+      continue;
+    const std::vector<bool> others = readers(other.key, examples);
+    bool complement = true;
+    for (std::size_t i = 0; i < reads.size() && complement; ++i) complement = reads[i] != others[i];
+    if (complement) return other.key.substr(0, other.key.find('['));
+  }
+  return "";
+}
 }  // namespace
 
 std::vector<KindKey> kind_keys(const KindRegistry& kinds, const Kind& kind,
@@ -155,6 +201,7 @@ std::vector<KindKey> kind_keys(const KindRegistry& kinds, const Kind& kind,
     std::vector<std::string> parts;              // sections below this one that another kind reads
     std::vector<std::string> optional_sections;  // sections asked for with has or find
     ExampleKeys here;
+    here.node = example.node;
     for (const auto& read : example_reads(kinds, kind, example, units)) {
       bool inside_part = false;
       for (const auto& part : parts) inside_part = inside_part || under(read.path, part);
@@ -175,17 +222,22 @@ std::vector<KindKey> kind_keys(const KindRegistry& kinds, const Kind& kind,
         for (const auto& section : optional_sections)
           if (under(read.path, section) && section.size() > within.size()) within = section;
         keys.push_back(
-            {key, read.expected, read.check, read.fallback, read.optional, generic(within)});
+            {key, read.expected, read.check, read.fallback, read.optional, generic(within), ""});
       } else {
         keys[found->second].optional = keys[found->second].optional || read.optional;
       }
     }
     per_example.push_back(std::move(here));
   }
-  // A key required in some examples only: required with the choice those examples make.
+  // A key required in some examples only: required with the choice those examples make, or
+  // without the key the other examples read instead.
   for (auto& key : keys) {
     if (key.fallback.empty() && !key.optional && key.required_with.empty())
       key.required_with = deciding_choice(key.key, per_example);
+  }
+  for (auto& key : keys) {
+    if (key.fallback.empty() && !key.optional && key.required_with.empty())
+      key.required_without = alternative(key.key, keys, per_example);
   }
   return keys;
 }

@@ -35,6 +35,9 @@ struct KindKey {
   // the kind has these values ("mode: power" for a Joule drive's power: of power, duty and
   // current, the mode's one is required).
   std::string required_with;
+  // A key required unless another is given: examples read exactly one of the two (a multisine's
+  // offset or its range).
+  std::string required_without;
 };
 // Where an example's scenario is read from: `name` as given, or, when the example has files,
 // a file of that name in a new temporary directory that holds them (removed with this).

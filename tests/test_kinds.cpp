@@ -104,7 +104,7 @@ TEST_CASE("docs/reference/kinds.md is the listing the registry produces") {
         describe_kinds(standard_kinds(), shared_units(), true, fit::describe_candidates));
 }
 
-TEST_CASE("The listing says which choice makes a key required, and not where none does") {
+TEST_CASE("The listing says which choice or which other key makes a key required") {
   const KindRegistry& kinds = standard_kinds();
   const auto required_with = [&](const std::string& category, const std::string& name) {
     std::map<std::string, std::string> keys;
@@ -123,6 +123,13 @@ TEST_CASE("The listing says which choice makes a key required, and not where non
   // A bundle's members have their own drives only when wired individually. Its examples also
   // differ in how a member's resistance is given, but the wiring, a choice of another section,
   // does not decide that.
+  // A multisine is scaled to a range or given an offset and an amplitude: of the two, one.
+  std::map<std::string, std::string> without;
+  for (const auto& key : kind_keys(kinds, kinds.registered("signal", "multisine"), shared_units()))
+    without[key.key] = key.required_without;
+  CHECK(without.at("offset") == "range");
+  CHECK(without.at("amplitude") == "range");
+  CHECK(without.at("components") == "");
   const auto bundle = required_with("bundle", "parallel");
   CHECK(bundle.at("electrical.drive.supply_voltage") == "electrical.wiring: individual");
   CHECK(bundle.at("muscle.resistance.resistance") == "");
