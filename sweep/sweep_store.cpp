@@ -31,17 +31,6 @@ struct Part {
   double wall_seconds = 0.0;
 };
 
-std::string read_text(const H5::H5File& file, const std::string& name) {
-  H5::DataSet set = file.openDataSet(name);
-  std::vector<std::string> values;
-  const H5::StrType type = utf8_text_type();
-  char* text = nullptr;
-  set.read(&text, type);
-  std::string value = text != nullptr ? text : "";
-  H5::DataSet::vlenReclaim(&text, type, H5::DataSpace(H5S_SCALAR));
-  return value;
-}
-
 // Every dataset under `group`, with its path relative to `prefix`.
 void copy_traces(const H5::H5File& file, const std::string& group, const std::string& prefix,
                  Hdf5Writer& writer) {
@@ -78,7 +67,7 @@ Part read_part(const std::string& path) {
     part.values = read_doubles(file, "/values");
     part.metrics = read_doubles(file, "/metrics");
     part.succeeded = read_doubles(file, "/succeeded").at(0) != 0.0;
-    part.message = read_text(file, "/message");
+    part.message = read_texts(file, "/message").at(0);  // a scalar: one text
     part.wall_seconds = read_doubles(file, "/wall_seconds").at(0);
     return part;
   } catch (const H5::Exception& error) {

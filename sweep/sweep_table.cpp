@@ -18,17 +18,6 @@ struct Column {
   std::vector<std::string> cells;  // by run
 };
 
-std::vector<std::string> read_texts(const H5::H5File& file, const std::string& name) {
-  H5::DataSet set = file.openDataSet(name);
-  std::vector<char*> texts(static_cast<std::size_t>(set.getSpace().getSimpleExtentNpoints()));
-  const H5::StrType type = utf8_text_type();
-  set.read(texts.data(), type);
-  std::vector<std::string> values;
-  for (const char* text : texts) values.emplace_back(text != nullptr ? text : "");
-  H5::DataSet::vlenReclaim(texts.data(), type, set.getSpace());
-  return values;
-}
-
 Column numbers(const H5::H5File& file, const std::string& name, const std::string& unit) {
   Column column{name + (unit.empty() || unit == "1" ? "" : " [" + unit + "]"), {}};
   for (double value : read_doubles(file, "/summary/" + summary_column(name)))

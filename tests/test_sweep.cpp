@@ -67,15 +67,8 @@ std::vector<double> read_column(const std::string& file, const std::string& name
   return values;
 }
 
-std::vector<std::string> read_texts(const std::string& file, const std::string& name) {
-  const H5::H5File h5(file, H5F_ACC_RDONLY);
-  H5::DataSet set = h5.openDataSet("/summary/" + name);
-  std::vector<char*> texts(static_cast<std::size_t>(set.getSpace().getSimpleExtentNpoints()));
-  const H5::StrType type = utf8_text_type();
-  set.read(texts.data(), type);
-  std::vector<std::string> values(texts.begin(), texts.end());
-  H5::DataSet::vlenReclaim(texts.data(), type, set.getSpace());
-  return values;
+std::vector<std::string> summary_texts(const std::string& file, const std::string& name) {
+  return read_texts(H5::H5File(file, H5F_ACC_RDONLY), "/summary/" + name);
 }
 
 // The step scenario over hA x C: 2 x 2 runs.
@@ -243,7 +236,7 @@ TEST_CASE("a structural axis builds the scenario again for each of its values", 
   CHECK(spec.axes[0].texts == std::vector<std::string>{"50 s", "60 s"});
   const std::string output = (directory.path / "seeds.h5").string();
   run_sweep(spec, {output, 2, false}, shared_units());
-  CHECK(read_texts(output, "scenario.duration") == std::vector<std::string>{"50 s", "60 s"});
+  CHECK(summary_texts(output, "scenario.duration") == std::vector<std::string>{"50 s", "60 s"});
   const auto last = read_column(output, "last");
   CHECK(last[1] > last[0]);  // heated 10 s longer
 }
@@ -290,13 +283,13 @@ TEST_CASE("a run that fails is recorded with its message, and the sweep goes on"
   const std::string output = (directory.path / "failing.h5").string();
   const auto outcome = run_sweep(spec, {output, 2, false}, shared_units());
   CHECK(outcome.failed == 1);
-  CHECK(read_texts(output, "status") == std::vector<std::string>{"ok", "failed", "ok"});
+  CHECK(summary_texts(output, "status") == std::vector<std::string>{"ok", "failed", "ok"});
   // The table the command prints at the end: a header with units, a row per run.
   const std::string table = sweep_table(spec, output);
   CHECK_THAT(table, Catch::StartsWith("run  muscle.thermal.heat_capacity [J/K]  tau [s]"));
   CHECK_THAT(table, Catch::Contains("\n1    -1 ") && Catch::Contains("nan      failed"));
   CHECK(std::count(table.begin(), table.end(), '\n') == 4);
-  const auto messages = read_texts(output, "message");
+  const auto messages = summary_texts(output, "message");
   CHECK_THAT(messages[1], Catch::Contains("muscle.thermal.heat_capacity"));
   const auto tau = read_column(output, "tau");
   CHECK(std::isnan(tau[1]));

@@ -85,6 +85,18 @@ std::vector<double> read_doubles(const H5::H5Location& location, const std::stri
   return values;
 }
 
+std::vector<std::string> read_texts(const H5::H5Location& location, const std::string& name) {
+  H5::DataSet set = location.openDataSet(name);
+  const H5::DataSpace space = set.getSpace();
+  std::vector<char*> texts(static_cast<std::size_t>(space.getSimpleExtentNpoints()));
+  const H5::StrType type = utf8_text_type();
+  if (!texts.empty()) set.read(texts.data(), type);
+  std::vector<std::string> values;
+  for (const char* text : texts) values.emplace_back(text != nullptr ? text : "");
+  if (!texts.empty()) H5::DataSet::vlenReclaim(texts.data(), type, space);
+  return values;
+}
+
 std::string read_text_attribute(const H5::H5Object& object, const std::string& name) {
   if (!object.attrExists(name)) return "";
   H5::Attribute attribute = object.openAttribute(name);

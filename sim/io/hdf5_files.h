@@ -47,6 +47,8 @@ void write_text_array_attribute(H5::H5Object& object, const std::string& name,
 
 // A dataset's values as doubles, whatever its shape (row-major).
 std::vector<double> read_doubles(const H5::H5Location& location, const std::string& name);
+// A dataset of variable-length texts, whatever its shape (row-major); a null text reads as "".
+std::vector<std::string> read_texts(const H5::H5Location& location, const std::string& name);
 // A scalar text attribute, or empty when there is none (or it is not text).
 std::string read_text_attribute(const H5::H5Object& object, const std::string& name);
 // A dataset's "units" attribute, or empty.
