@@ -352,6 +352,12 @@ void read_store(const ConfigNode& root, SweepSpec& spec) {
                 : traces == "decimated" ? TraceStorage::decimated
                                         : TraceStorage::none;
   if (spec.traces != TraceStorage::decimated) {
+    // An interval left from a decimated store that a --set changed: say how to replace the
+    // whole section, since a --set cannot remove a key.
+    if (store->has("interval"))
+      store->at("interval")
+          .fail("applies to traces: decimated only (traces here: " + traces +
+                "); give the store without it, e.g. --set 'store={traces: " + traces + "}'");
     return;
   }
   spec.trace_interval = store->quantity("interval", "s", ValueCheck::positive());

@@ -48,11 +48,11 @@ struct SweepDirectory {
 const std::string kStepScenario =
     "scenario: " + source_path("configs/sweeps/thermal_step.yaml") + "\n";
 
-std::string sweep_error(const std::string& text) {
+std::string sweep_error(const std::string& text, const std::vector<std::string>& overrides = {}) {
   SweepDirectory directory;
   const std::string file = directory.write("sweep.yaml", text);
   try {
-    load_sweep(file, {}, shared_units());
+    load_sweep(file, overrides, shared_units());
   } catch (const ConfigError& error) {
     return error.what();
   }
@@ -223,6 +223,19 @@ TEST_CASE("a bad sweep file gets one located error before any run", "[sweep]") {
   CHECK_THAT(sweep_error(head + "set: ['nonsense.key=3']\n"),
              Catch::Contains("sweep.yaml:3:7: error: set[0]: scenario 'scenario' does not take "
                              "it: nonsense: unknown key 'nonsense'"));
+}
+
+TEST_CASE("A --set that stores full traces says how to drop a decimated store's interval",
+          "[sweep]") {
+  const std::string decimated =
+      "sweep: {name: traces}\n" + kStepScenario + "store: {traces: decimated, interval: 10 s}\n";
+  CHECK(sweep_error(decimated) == "");
+  CHECK_THAT(sweep_error(decimated, {"store.traces=full"}),
+             Catch::Contains("sweep.yaml:") &&
+                 Catch::Contains("store.interval: applies to traces: decimated only (traces "
+                                 "here: full); give the store without it, e.g. --set "
+                                 "'store={traces: full}'"));
+  CHECK(sweep_error(decimated, {"store={traces: full}"}) == "");
 }
 
 TEST_CASE("a structural axis builds the scenario again for each of its values", "[sweep]") {
