@@ -99,6 +99,9 @@ SweepStore::SweepStore(const SweepSpec& spec, std::string output, Access access)
   namespace fs = std::filesystem;
   if (access == Access::join) return;
   prepare_output_file(output_);  // a directory or a device is refused before any run, as by run
+  // The file is written when the sweep ends; until then its runs are in the parts directory,
+  // and an empty partial file left by a killed sweep would only look like a record.
+  std::filesystem::remove(partial_path(output_));
   const bool resume = access == Access::resume;
   const std::string identity_file = parts_ + "/" + kIdentityFile;
   const std::string identity = sweep_identity(spec);

@@ -111,6 +111,17 @@ RecoveredRecord cut_and_close(const std::string& partial, const std::string& wor
 
 RecoveredRecord recover_partial_record(const std::string& partial, const std::string& output) {
   if (!std::filesystem::is_regular_file(partial)) refuse(partial, "no such file");
+  if (std::filesystem::file_size(partial) == 0) {
+    // A sweep's runs are kept in <out>.parts, not in its partial file.
+    const bool sweep =
+        partial.ends_with(kSuffix) &&
+        std::filesystem::is_directory(
+            partial.substr(0, partial.size() - std::char_traits<char>::length(kSuffix)) + ".parts");
+    refuse(partial, sweep ? "it is empty: a sweep writes its file when it ends, and keeps its runs "
+                            "in the .parts directory beside it; tcpmsim sweep ... --resume "
+                            "finishes it"
+                          : "it is empty: the run was stopped before it wrote anything");
+  }
   std::string target = output;
   if (target.empty()) {
     const bool named =

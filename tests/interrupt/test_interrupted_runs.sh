@@ -103,3 +103,15 @@ code=$?
 ((code == 3)) || fail "recover of a closed record: exit $code, expected 3"
 [[ $(sha256sum <"$work/run.h5") == "$before" ]] || fail "the complete record was replaced"
 echo "ok: SIGKILL -> recover wrote $work/run.interrupted.h5; a closed record is refused: $(cat "$work/err")"
+
+# A partial file killed before its first write is empty: recover says so, and for a sweep (whose
+# runs are in <out>.parts) how to finish it instead.
+: >"$work/empty.h5.partial"
+"$tcpmsim" recover "$work/empty.h5.partial" 2>"$work/err"
+code=$?
+((code == 3)) || fail "recover of an empty file: exit $code, expected 3"
+grep -q "it is empty: the run was stopped before it wrote anything" "$work/err" || fail "$(cat "$work/err")"
+mkdir -p "$work/sweep.h5.parts" && : >"$work/sweep.h5.partial"
+"$tcpmsim" recover "$work/sweep.h5.partial" 2>"$work/err"
+grep -q "a sweep writes its file when it ends" "$work/err" || fail "$(cat "$work/err")"
+echo "ok: an empty partial file is refused with its reason"
