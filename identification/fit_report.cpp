@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -68,11 +69,15 @@ std::string fit_summary(const FitSpec& spec, const FitResult& result) {
   out << "fit of " << spec.model_file << " to " << spec.data_file << ": " << result.iterations
       << " iterations, " << result.simulations << " simulations; " << result.termination << "\n"
       << "  gradient: " << result.gradient << "\n";
-  out << "  " << std::left << std::setw(36) << "parameter" << std::setw(16) << "initial"
+  // The path column fits the longest path (an effect's parameters run to 40 characters).
+  int path_width = 36;
+  for (const auto& estimate : result.estimates)
+    path_width = std::max(path_width, static_cast<int>(estimate.path.size()) + 2);
+  out << "  " << std::left << std::setw(path_width) << "parameter" << std::setw(16) << "initial"
       << std::setw(16) << "estimate" << std::setw(14) << "std. error"
       << "unit\n";
   for (const auto& estimate : result.estimates) {
-    out << "  " << std::setw(36) << estimate.path << std::setw(16)
+    out << "  " << std::setw(path_width) << estimate.path << std::setw(16)
         << number_text(estimate.initial, 6) << std::setw(16) << number_text(estimate.value, 6)
         << std::setw(14)
         << (estimate.identifiable ? number_text(estimate.standard_error, 3)

@@ -239,6 +239,11 @@ TEST_CASE("An estimate on its bound, and a fit stopped at its iteration limit, s
   CHECK_THAT(fit::fit_summary(spec, bounded),
              Catch::Contains("at a bound: muscle.mechanics.k1 ended on its upper bound, 10 N/m; "
                              "the optimum may lie beyond it"));
+  // A path longer than the column (an effect's parameter) widens it: the columns stay apart.
+  fit::FitResult long_path = bounded;
+  long_path.estimates[0].path = "muscle.effects[0].hysteresis.stiffness_of_a_long_name";
+  CHECK_THAT(fit::fit_summary(spec, long_path),
+             Catch::Contains("  muscle.effects[0].hysteresis.stiffness_of_a_long_name  8 "));
   CHECK_THAT(fit::fit_json(spec, bounded), Catch::Contains("\"at_bound\": \"upper\"") &&
                                                Catch::Contains("\"at_bound\": null") &&
                                                Catch::Contains("\"converged\": true"));
