@@ -291,6 +291,23 @@ int sweep(const Options& options) {
   return outcome.failed > 0 ? kSimulationFailed : kSuccess;
 }
 
+// A command's output directory, made before its work so that one that cannot be written is
+// refused first; whether it was made here (and may be removed again when the work fails).
+bool make_output_directory(const std::string& directory) {
+  const bool existed = std::filesystem::exists(directory);
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
+  if (error) throw std::runtime_error("cannot write " + directory + ": " + error.message());
+  return !existed;
+}
+
+// Removes a directory this command made when its work failed before writing into it: an empty
+// output directory would look like a result.
+void remove_if_empty(const std::string& directory) {
+  std::error_code ignored;
+  if (std::filesystem::is_empty(directory, ignored)) std::filesystem::remove(directory, ignored);
+}
+
 // Output-error identification: a model's parameters from a measurement (identification/).
 int fit(const Options& options) {
   auto units = std::make_shared<tcpmsim::UnitSystem>();
@@ -300,14 +317,13 @@ int fit(const Options& options) {
       options.fit_directory.empty()
           ? "results/fit_" + std::filesystem::path(spec.model_file).stem().string()
           : options.fit_directory;
-  std::error_code error;
-  std::filesystem::create_directories(directory, error);
-  if (error) throw std::runtime_error("cannot write " + directory + ": " + error.message());
+  const bool made = make_output_directory(directory);
   tcpmsim::fit::FitResult result;
   try {
     result = tcpmsim::fit::fit_model(spec.problem, spec.settings);
   } catch (const tcpmsim::fit::FitFailure& failure) {
     std::cerr << "tcpmsim: the fit failed: " << failure.what() << "\n";
+    if (made) remove_if_empty(directory);
     return kSimulationFailed;
   }
   const auto written = tcpmsim::fit::write_fit_outputs(
@@ -342,14 +358,13 @@ int discover(const Options& options) {
   request.overrides = options.overrides;
   const tcpmsim::fit::DiscoverSetup setup = tcpmsim::fit::setup_discovery(request, units);
   const std::string& directory = options.fit_directory;
-  std::error_code error;
-  std::filesystem::create_directories(directory, error);
-  if (error) throw std::runtime_error("cannot write " + directory + ": " + error.message());
+  const bool made = make_output_directory(directory);
   tcpmsim::fit::Discovery discovery;
   try {
     discovery = tcpmsim::fit::discover(setup);
   } catch (const tcpmsim::fit::FitFailure& failure) {
     std::cerr << "tcpmsim: the base model's fit failed: " << failure.what() << "\n";
+    if (made) remove_if_empty(directory);
     return kSimulationFailed;
   }
   const auto written = tcpmsim::fit::write_discovery(

@@ -195,6 +195,13 @@ contains "$work/out" "muscle.mechanics.k1" "the summary lists the parameters"
 contains "$work/out" "validation     force" "the summary scores the validation window"
 [[ -s $work/fit/fit.json && -s $work/fit/fitted.yaml && -s $work/fit/fit.h5 ]] && echo "ok: fit.json, fitted.yaml, fit.h5" || { echo "FAIL: fit outputs missing"; failures=$((failures + 1)); }
 expect 0 "the fitted scenario runs as it is" -- "$tcpmsim" run "$work/fit/fitted.yaml" -o "$work/fitted.h5" --quiet
+# A fit that fails (a force of 1e305 N: its squared residuals overflow) says why, exits 1, and
+# leaves no empty output directory that would look like a result.
+awk -F, 'NR == 100 { $4 = "1e308" } 1' OFS=, "$work/measured.csv" >"$work/overflow.csv"
+expect 1 "a fit the data make impossible fails with its reason" -- "$tcpmsim" fit "$discover/ch7_fit.yaml" \
+  --data "$work/overflow.csv" --out "$work/fit_failed" --set 'multistart.starts=0'
+contains "$work/err" "the squared residuals overflow" "the failed fit says why"
+[[ ! -e $work/fit_failed ]] && echo "ok: a failed fit leaves no output directory" || { echo "FAIL: $work/fit_failed exists"; failures=$((failures + 1)); }
 # Issue 31: a window that holds no sample (between two samples, or inside a gap in the data's
 # times) is a located configuration error, not a crash, and nothing is written.
 fit_file() {  # fit_file NAME IDENTIFICATION [VALIDATION]: a one-parameter fit of the base model
