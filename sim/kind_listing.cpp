@@ -135,14 +135,19 @@ std::vector<bool> readers(const std::string& key, const std::vector<ExampleKeys>
   return reads;
 }
 
+// Whether a key needs a condition at all: the examples show one section, and some of them do not
+// read it.
+bool read_in_some(const std::vector<bool>& reads, const std::vector<ExampleKeys>& examples) {
+  return one_section(examples) &&
+         !std::all_of(reads.begin(), reads.end(), [](bool read) { return read; });
+}
+
 // For a key that some examples read and others do not: the choice that decides it, made in
 // every example, in the key's section or one above it, and with other values where the key is
 // not read: "mode: duty" (or "mode: duty or current"); "" if none does.
 std::string deciding_choice(const std::string& key, const std::vector<ExampleKeys>& examples) {
   const std::vector<bool> reads = readers(key, examples);
-  if (!one_section(examples) ||
-      std::all_of(reads.begin(), reads.end(), [](bool read) { return read; }))
-    return "";
+  if (!read_in_some(reads, examples)) return "";
   for (const auto& [choice, ignored] : examples.front().choices) {
     const std::size_t dot = choice.rfind('.');
     if (dot != std::string::npos && !under(key, choice.substr(0, dot))) continue;
@@ -175,9 +180,7 @@ std::string parent_section(const std::string& key) {
 std::string alternative(const std::string& key, const std::vector<KindKey>& keys,
                         const std::vector<ExampleKeys>& examples) {
   const std::vector<bool> reads = readers(key, examples);
-  if (!one_section(examples) ||
-      std::all_of(reads.begin(), reads.end(), [](bool read) { return read; }))
-    return "";
+  if (!read_in_some(reads, examples)) return "";
   for (const auto& other : keys) {
     if (other.key == key || other.optional || !other.fallback.empty()) continue;
     if (parent_section(other.key) != parent_section(key) && !under(other.key, key) &&
