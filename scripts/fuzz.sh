@@ -14,6 +14,7 @@ seconds=${1:-60}
 shift || true
 [[ ${1:-} == -- ]] && shift
 scripts/install-deps.sh
+export CMAKE_GENERATOR="${CMAKE_GENERATOR:-Ninja}"  # new trees only, as scripts/test.sh
 # TCPMSIM_FUZZ_BUILD_DIR: a tree already configured with TCPMSIM_FUZZ=ON (e.g. one built by
 # `CC=clang CXX=clang++ TCPMSIM_FUZZ=ON scripts/test.sh`); by default build-fuzz, configured here.
 build=${TCPMSIM_FUZZ_BUILD_DIR:-build-fuzz}

@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   g++ make cmake git pkg-config            # toolchain; git stamps the commit into records
+  ninja-build                              # the build trees' generator (scripts/test.sh)
   libsundials-dev                          # CVODE with dense, band and KLU linear solvers
   libeigen3-dev                            # linear algebra
   libyaml-cpp-dev                          # scenario files

@@ -9,6 +9,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
+export CMAKE_GENERATOR="${CMAKE_GENERATOR:-Ninja}"  # new trees only, as scripts/test.sh
 prefix="${TCPMSIM_PREFIX:-$HOME/.local}"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DTCPMSIM_BUILD_TESTS=OFF -DCMAKE_INSTALL_PREFIX="$prefix"
 cmake --build build -j"$(nproc)" --target tcpmsim tcpmsim_python

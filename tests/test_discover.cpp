@@ -156,6 +156,37 @@ TEST_CASE("Hysteresis hidden in the data is named, and attaching it shrinks the 
   CHECK(found.diagnostics.feature(0, "last direction of motion") > 3 * found.diagnostics.bound);
 }
 
+// Every stage of a discover on a short record (80 s to identify, 40 s to validate, one start):
+// the base fit, the candidate's nested refit, the ranking, the diagnostics and the files. The
+// case above judges the verdict on a longer record; this one is what the sanitizer tree runs.
+TEST_CASE("A short discover goes through every stage and writes every file it names") {
+  const std::string data = discover_measurement(
+      "hysteresis_short", {"muscle.effects=[{type: hysteresis, stiffness: 50 N/m, force: 6 mN}]"},
+      "120 s");
+  auto request = discover_request(data, {"hysteresis"});
+  request.validate_from = 80.0;
+  request.starts = 1;
+  const fit::Discovery found = fit::discover(fit::setup_discovery(request, shared_units()));
+  INFO(fit::discovery_summary(found));
+  REQUIRE(found.candidates.size() == 1);
+  const auto& candidate = found.candidates.front();
+  CHECK(candidate.status == "fitted");
+  // Nested: the refit starts from the base optimum with the effect at zero size.
+  CHECK(candidate.result.cost <= candidate.nested_cost * (1.0 + 1e-9));
+  CHECK(candidate.validation_rmse[0] < found.base.validation.rmse[0]);
+  CHECK(found.verdict == "hysteresis");
+  const std::string directory = process_directory("discover_short");
+  const auto written = fit::write_discovery(directory, found);
+  CHECK(written.size() == 5);
+  for (const auto& path : written) {
+    INFO(path);
+    CHECK(std::filesystem::file_size(path) > 0);
+  }
+  std::ifstream json(std::filesystem::path(directory) / "discovery.json");
+  const std::string text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
+  CHECK_THAT(text, Catch::Contains("\"verdict\": \"hysteresis\""));
+}
+
 TEST_CASE("The noise floor is read from the data: white noise under a smooth signal and steps") {
   const std::size_t n = 8000;
   RandomStream stream(5, "floor");
