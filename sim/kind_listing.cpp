@@ -12,6 +12,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "sim/config/config_error.h"
 #include "sim/config/config_node.h"
 #include "sim/scenario.h"
 
@@ -174,15 +175,16 @@ std::string parent_section(const std::string& key) {
   return dot == std::string::npos ? "" : key.substr(0, dot);
 }
 
-// For a key some examples read: the first other required key, of its own section or the
-// section the key names (a scalar or its section), that exactly the other examples read; by
-// its name in the section ("range" for "range[]"); "" if none.
+// For a key some examples read: the first other key without a default (and, unless
+// `optional_too`, required), of its own section or the section the key names (a scalar or its
+// section), that exactly the other examples read; by its name in the section ("range" for
+// "range[]"); "" if none.
 std::string alternative(const std::string& key, const std::vector<KindKey>& keys,
-                        const std::vector<ExampleKeys>& examples) {
+                        const std::vector<ExampleKeys>& examples, bool optional_too = false) {
   const std::vector<bool> reads = readers(key, examples);
   if (!read_in_some(reads, examples)) return "";
   for (const auto& other : keys) {
-    if (other.key == key || other.optional || !other.fallback.empty()) continue;
+    if (other.key == key || (other.optional && !optional_too) || !other.fallback.empty()) continue;
     if (parent_section(other.key) != parent_section(key) && !under(other.key, key) &&
         !under(key, other.key))
       continue;
@@ -192,6 +194,38 @@ std::string alternative(const std::string& key, const std::vector<KindKey>& keys
     if (complement) return other.key.substr(0, other.key.find('['));
   }
   return "";
+}
+
+// Whether an example still builds with `key` (a path of plain names below its section) taken
+// out: a key its reader asks for with has() may still be needed when another key is absent
+// (a hysteresis element's force, without its radius).
+bool builds_without(const KindRegistry& kinds, const Kind& kind, const KindExample& example,
+                    const std::string& key, std::shared_ptr<const UnitSystem> units) {
+  if (key.find('[') != std::string::npos) return true;
+  YAML::Node root = YAML::Load(example.text);
+  YAML::Node section = root;
+  std::string path = example.node + "." + key;
+  for (std::size_t dot = path.find('.'); dot != std::string::npos; dot = path.find('.')) {
+    std::string part = path.substr(0, dot);
+    path = path.substr(dot + 1);
+    std::size_t index = 0;
+    if (const std::size_t bracket = part.find('['); bracket != std::string::npos) {
+      index = std::stoul(part.substr(bracket + 1));
+      part = part.substr(0, bracket);
+    }
+    YAML::Node next = section[part];
+    if (next.IsSequence()) next.reset(next[index]);
+    if (!next.IsMap()) return true;
+    section.reset(next);
+  }
+  section.remove(path);
+  const ExampleScenario where(example, kind.name + "_example.yaml");
+  try {
+    build_scenario(ConfigNode::load_text(YAML::Dump(root), where.name(), {}, units), kinds);
+  } catch (const ConfigError&) {
+    return false;
+  }
+  return true;
 }
 }  // namespace
 
@@ -241,6 +275,19 @@ std::vector<KindKey> kind_keys(const KindRegistry& kinds, const Kind& kind,
   for (auto& key : keys) {
     if (key.fallback.empty() && !key.optional && key.required_with.empty())
       key.required_without = alternative(key.key, keys, per_example);
+  }
+  // A key asked for with has() is optional, unless another key replaces it: some examples read
+  // one and the others the other, and an example without it fails to build.
+  for (auto& key : keys) {
+    if (!key.optional || !key.fallback.empty()) continue;
+    const std::string other = alternative(key.key, keys, per_example, true);
+    if (other.empty()) continue;
+    const auto reading = std::find_if(per_example.begin(), per_example.end(),
+                                      [&](const ExampleKeys& e) { return e.keys.count(key.key); });
+    const auto example = kind.examples.begin() + (reading - per_example.begin());
+    if (builds_without(kinds, kind, *example, key.key, units)) continue;
+    key.optional = false;
+    key.required_without = other;
   }
   return keys;
 }

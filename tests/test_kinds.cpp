@@ -130,6 +130,25 @@ TEST_CASE("The listing says which choice or which other key makes a key required
   CHECK(without.at("offset") == "range");
   CHECK(without.at("amplitude") == "range");
   CHECK(without.at("components") == "");
+  // Keys asked for with has() are optional unless another replaces them: a hysteresis element is
+  // given by its force or by its radius, a Maxwell branch by its damping or its time constant;
+  // a softening's slope and bend, and a convection's exponent, are optional wherever read.
+  const auto status = [&](const std::string& name) {
+    std::map<std::string, std::string> keys;
+    for (const auto& key : kind_keys(kinds, kinds.registered("effect", name), shared_units())) {
+      keys[key.key] = !key.fallback.empty() ? "default"
+                      : key.optional        ? "optional"
+                                            : "required without " + key.required_without;
+    }
+    return keys;
+  };
+  CHECK(status("hysteresis").at("force") == "required without radius");
+  CHECK(status("hysteresis").at("radius") == "required without force");
+  CHECK(status("maxwell_branch").at("damping") == "required without time_constant");
+  CHECK(status("maxwell_branch").at("time_constant") == "required without damping");
+  CHECK(status("thermal_softening").at("stiffness_slope") == "optional");
+  CHECK(status("thermal_softening").at("stiffness_curvature") == "optional");
+  CHECK(status("free_convection").at("exponent") == "optional");
   const auto bundle = required_with("bundle", "parallel");
   CHECK(bundle.at("electrical.drive.supply_voltage") == "electrical.wiring: individual");
   CHECK(bundle.at("muscle.resistance.resistance") == "");

@@ -245,6 +245,25 @@ CandidateDeclaration one_form(CandidateFamily family, std::string member,
   return {{std::move(family)}, ""};
 }
 
+// A muscle with the physical thermal form (free convection needs its heat balance) and one
+// free_convection entry with `keys`.
+std::string free_convection_example(const std::string& keys) {
+  return R"(scenario: {name: example, duration: 10 s}
+output: {rate: 10 Hz}
+muscle:
+  thermal: {heat_capacity: 0.3 J/K, conductance: 0.01 W/K, ambient_temperature: 23 degC}
+  thermal_force: {form: physical, force_per_kelvin: 0.004 N/K, reference_temperature: 23 degC}
+  mechanics: {k1: 10.8e-3 N/mm, k2: 2.7e-3 N/mm, damping: 4.3e-3 N*s/mm, force_offset: 0.1 N}
+  resistance: 10 ohm
+  inductance: {quantity: measure, lambda_l: 2.81 mm, lambda_x: 28.8 mm, lambda_0: 0.433}
+  effects:
+    - {type: free_convection, name: still_air, )" +
+         keys + R"(}
+drive: {mode: power, power: 1 W}
+load: {type: deflection, deflection: 20 mm}
+)";
+}
+
 CandidateDeclaration free_convection_candidates() {
   return one_form(
       {"nonlinear_convection",
@@ -373,29 +392,21 @@ void register_effect_kinds(KindRegistry& kinds) {
              maxwell_branch_candidates()});
   kinds.add({kEffectCategory,
              "free_convection",
-             "laminar free convection, Q = G dT_ref (dT/dT_ref)^(5/4), in the thermal node's "
-             "heat balance (physical form)",
-             {{R"(scenario: {name: example, duration: 10 s}
-output: {rate: 10 Hz}
-muscle:
-  thermal: {heat_capacity: 0.3 J/K, conductance: 0.01 W/K, ambient_temperature: 23 degC}
-  thermal_force: {form: physical, force_per_kelvin: 0.004 N/K, reference_temperature: 23 degC}
-  mechanics: {k1: 10.8e-3 N/mm, k2: 2.7e-3 N/mm, damping: 4.3e-3 N*s/mm, force_offset: 0.1 N}
-  resistance: 10 ohm
-  inductance: {quantity: measure, lambda_l: 2.81 mm, lambda_x: 28.8 mm, lambda_0: 0.433}
-  effects:
-    - {type: free_convection, name: still_air, conductance: 0.01 W/K, reference_difference: 50 K}
-drive: {mode: power, power: 1 W}
-load: {type: deflection, deflection: 20 mm}
-)",
+             "laminar free convection, Q = G dT_ref (dT/dT_ref)^(5/4), or ^n with `exponent` n "
+             "from 1 to 2, in the heat balance of the thermal node's physical form",
+             {{free_convection_example("conductance: 0.01 W/K, reference_difference: 50 K"),
+               "muscle.effects[0]"},
+              {free_convection_example(
+                   "conductance: 0.01 W/K, reference_difference: 50 K, exponent: 1.4"),
                "muscle.effects[0]"}},
              EffectBuilder(attach_free_convection),
              free_convection_candidates()});
   kinds.add({kEffectCategory,
              "thermal_softening",
              "a spring in parallel with the SLS whose stiffness falls with temperature, "
-             "s = max(0, s_ref (1 + alpha (T - T_ref))) + beta (T - T_ref): a heated polymer "
-             "softens (beta, stiffness_slope, optional: the muscle's own stiffness, either sign)",
+             "s = max(0, s_ref (1 + alpha (T - T_ref))) + beta (T - T_ref) + gamma (T - T_ref)^2: "
+             "a heated polymer softens (beta, stiffness_slope, and gamma, stiffness_curvature, "
+             "optional: the muscle's own stiffness, either sign, and its bend)",
              {{example_muscle_scenario(
                    "  effects:\n    - {type: thermal_softening, name: softening, "
                    "reference_stiffness: 5 mN/mm, temperature_coefficient: -0.01 1/K, "
@@ -405,7 +416,8 @@ load: {type: deflection, deflection: 20 mm}
               {example_muscle_scenario(
                    "  effects:\n    - {type: thermal_softening, name: softening, "
                    "reference_stiffness: 0 N/m, temperature_coefficient: 0 1/K, "
-                   "reference_temperature: 23 degC, stiffness_slope: -0.05 mN/(mm*K)}\n",
+                   "reference_temperature: 23 degC, stiffness_slope: -0.05 mN/(mm*K), "
+                   "stiffness_curvature: 5e-4 mN/(mm*K^2)}\n",
                    ""),
                "muscle.effects[0]"}},
              EffectBuilder(attach_thermal_softening),
