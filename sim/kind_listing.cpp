@@ -317,7 +317,11 @@ std::string describe_kinds(const KindRegistry& kinds, std::shared_ptr<const Unit
   if (markdown) {
     out << "# Kinds of component and signal\n\nMade by `tcpmsim kinds --markdown` from the "
            "registry: each kind's examples are built and the keys its code reads are listed. "
-           "Quantities take any unit convertible to the one shown.\n\n";
+           "Quantities take any unit convertible to the one shown. The last column says whether "
+           "a key must be given: *required*; *optional*; *default* and the value taken without "
+           "it; *required with* a choice (the key is read only when that choice is made, as a "
+           "Joule drive's `power` with `mode: power`); or *required without* another key (give "
+           "one of the two, as a hysteresis element's `force` or `radius`).\n\n";
   }
   for (const Category& category : kinds.categories()) {
     if (markdown) {
