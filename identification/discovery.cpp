@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <numeric>
 
 #include "identification/candidate_aliases.h"
@@ -189,55 +190,70 @@ CandidateOutcome fit_candidate(const DiscoverSetup& setup, const FitResult& base
   return outcome;
 }
 
-// Every candidate refitted from `baseline`, in parallel, and scored against it.
-std::vector<CandidateOutcome> fit_candidates(const DiscoverSetup& setup, const Baseline& baseline,
-                                             const std::vector<double>& noise,
-                                             const std::vector<std::vector<double>>& measured,
-                                             const std::vector<EffectCandidate>& tried,
-                                             int& simulations) {
-  std::vector<CandidateOutcome> outcomes(tried.size());
-  const std::vector<std::string> labels(tried.size(), "candidate");
-  // The candidates with the most parameters (the slowest fits) are started first, so that the
-  // threads finish together; each result keeps its place.
-  std::vector<std::size_t> order(tried.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return tried[a].parameters.size() > tried[b].parameters.size();
-  });
-  run_in_parallel(labels, setup.request.threads, [&](std::size_t k) {
-    outcomes[order[k]] = fit_candidate(setup, baseline.result, noise, tried[order[k]]);
-  });
-  for (auto& outcome : outcomes) {
-    simulations += outcome.result.simulations;
-    if (outcome.status == "fitted") score(outcome, baseline, noise, measured, setup);
+// One family's candidates (indices into the catalogue's list): its simplest members and its
+// higher orders.
+struct FamilyMembers {
+  std::vector<std::size_t> simplest, higher;
+  std::size_t parameters = 0;  // of all its members: the longest families are started first
+};
+
+std::vector<FamilyMembers> families_of(const std::vector<EffectCandidate>& tried) {
+  std::vector<FamilyMembers> families;
+  std::map<std::string, std::size_t> index;
+  for (std::size_t k = 0; k < tried.size(); ++k) {
+    const auto [found, added] = index.try_emplace(tried[k].name, families.size());
+    if (added) families.emplace_back();
+    FamilyMembers& family = families[found->second];
+    (tried[k].order == 1 ? family.simplest : family.higher).push_back(k);
+    family.parameters += tried[k].parameters.size();
   }
-  return outcomes;
+  return families;
 }
 
-// The catalogue's candidates refitted in two waves: every family's simplest members (order 1),
-// then its higher orders only where a simplest member lowered the BIC by more than the threshold
-// (forward selection of the model order: a Prandtl-Ishlinskii operator is tried where one Dahl
-// element already explains something).
+// The catalogue's candidates refitted from `baseline` and scored against it, family by family
+// in parallel: each family's simplest members (order 1), then, on the same thread, its higher
+// orders only where a simplest member lowered the BIC by more than the threshold (forward
+// selection of the model order: a Prandtl-Ishlinskii operator is tried where one Dahl element
+// already explains something). A family's higher orders start as soon as its own simplest
+// members are scored, not once every family's are. Each fit runs on one thread, so that it
+// (which splits its sensitivities among its threads) is the same whatever -j is. The outcomes
+// are the simplest members in the catalogue's order, then the higher orders tried.
 std::vector<CandidateOutcome> fit_catalogue(const DiscoverSetup& setup, const Baseline& baseline,
                                             const std::vector<double>& noise,
                                             const std::vector<std::vector<double>>& measured,
                                             const std::vector<EffectCandidate>& tried,
                                             int& simulations) {
-  std::vector<EffectCandidate> simplest, higher;
-  for (const auto& candidate : tried)
-    (candidate.order == 1 ? simplest : higher).push_back(candidate);
-  auto outcomes = fit_candidates(setup, baseline, noise, measured, simplest, simulations);
-  std::vector<EffectCandidate> promising;
-  for (const auto& candidate : higher) {
-    const bool evidence = std::any_of(outcomes.begin(), outcomes.end(), [&](const auto& o) {
-      return o.name == candidate.name && o.status == "fitted" &&
-             o.delta_bic < -setup.request.bic_threshold;
+  const std::vector<FamilyMembers> families = families_of(tried);
+  std::vector<std::size_t> order(families.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return families[a].parameters > families[b].parameters;
+  });
+  std::vector<CandidateOutcome> fitted(tried.size());
+  std::vector<char> ran(tried.size(), 0);  // each written by its family's thread only
+  const auto fit_and_score = [&](std::size_t k) {
+    fitted[k] = fit_candidate(setup, baseline.result, noise, tried[k]);
+    if (fitted[k].status == "fitted") score(fitted[k], baseline, noise, measured, setup);
+    ran[k] = 1;
+  };
+  const std::vector<std::string> labels(families.size(), "candidate");
+  run_in_parallel(labels, setup.request.threads, [&](std::size_t f) {
+    const FamilyMembers& family = families[order[f]];
+    for (const std::size_t k : family.simplest) fit_and_score(k);
+    const bool evidence = std::any_of(family.simplest.begin(), family.simplest.end(), [&](auto k) {
+      return fitted[k].status == "fitted" && fitted[k].delta_bic < -setup.request.bic_threshold;
     });
-    if (evidence) promising.push_back(candidate);
+    if (evidence)
+      for (const std::size_t k : family.higher) fit_and_score(k);
+  });
+  std::vector<CandidateOutcome> outcomes;
+  for (const bool simplest : {true, false}) {
+    for (std::size_t k = 0; k < tried.size(); ++k) {
+      if (!ran[k] || (tried[k].order == 1) != simplest) continue;
+      simulations += fitted[k].result.simulations;
+      outcomes.push_back(std::move(fitted[k]));
+    }
   }
-  auto more = fit_candidates(setup, baseline, noise, measured, promising, simulations);
-  outcomes.insert(outcomes.end(), std::make_move_iterator(more.begin()),
-                  std::make_move_iterator(more.end()));
   return outcomes;
 }
 
