@@ -170,9 +170,10 @@ CandidateOutcome fit_candidate(const DiscoverSetup& setup, const FitResult& base
     auto& settings = outcome.spec.settings;
     settings.start = values_of(base);
     settings.start.insert(settings.start.end(), candidate.nested.begin(), candidate.nested.end());
-    // The candidates run in parallel; each on one thread, so that its fit (which splits its
-    // sensitivities among its threads) is the same whatever -j is.
+    // The candidates run in parallel, each on one thread, its sensitivities in one run (the
+    // cheapest on one thread).
     settings.threads = 1;
+    settings.sensitivity_groups = 1;
     settings.screened_from = base.estimates.size();
     settings.starts = std::min(settings.starts, 4);
     settings.refine = 1;
@@ -215,8 +216,7 @@ std::vector<FamilyMembers> families_of(const std::vector<EffectCandidate>& tried
 // orders only where a simplest member lowered the BIC by more than the threshold (forward
 // selection of the model order: a Prandtl-Ishlinskii operator is tried where one Dahl element
 // already explains something). A family's higher orders start as soon as its own simplest
-// members are scored, not once every family's are. Each fit runs on one thread, so that it
-// (which splits its sensitivities among its threads) is the same whatever -j is. The outcomes
+// members are scored, not once every family's are. Each fit runs on one thread. The outcomes
 // are the simplest members in the catalogue's order, then the higher orders tried.
 std::vector<CandidateOutcome> fit_catalogue(const DiscoverSetup& setup, const Baseline& baseline,
                                             const std::vector<double>& noise,

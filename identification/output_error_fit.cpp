@@ -72,11 +72,11 @@ class Residuals {
     return cost;
   }
   // The weighted residuals' Jacobian (row-major, m x n) per SI unit of each parameter, from
-  // forward sensitivities; the parameters are shared among `threads` runs.
-  bool sensitivity_jacobian(const std::vector<double>& values, int threads,
+  // forward sensitivities; the parameters are shared among `groups` runs, `threads` at once.
+  bool sensitivity_jacobian(const std::vector<double>& values, int groups, int threads,
                             std::vector<double>& jacobian) const {
     const std::size_t n = values.size();
-    const auto runs = std::min<std::size_t>(n, static_cast<std::size_t>(std::max(1, threads)));
+    const auto runs = std::min<std::size_t>(n, static_cast<std::size_t>(std::max(1, groups)));
     std::vector<std::vector<std::size_t>> tracked(runs);
     for (std::size_t j = 0; j < n; ++j) tracked[j % runs].push_back(j);
     std::vector<OutputSensitivities> results(runs);
@@ -190,7 +190,8 @@ class SimulationCost final : public ceres::CostFunction {
  private:
   // The Jacobian at the last point from forward sensitivities, in the unit coordinates.
   bool sensitivity(const std::vector<double>& theta) const {
-    if (!residuals_.sensitivity_jacobian(physical(problem_, theta.data()), settings_.threads,
+    if (!residuals_.sensitivity_jacobian(physical(problem_, theta.data()),
+                                         settings_.sensitivity_groups, settings_.threads,
                                          last_jacobian_))
       return false;
     const std::size_t n = theta.size();

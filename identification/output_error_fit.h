@@ -29,7 +29,12 @@ struct FitSettings {
   // candidates start where the effect has zero size, so that each is the base model there.)
   std::vector<double> start;
   std::uint64_t seed = 1;
-  int threads = 2;                // simulations at once (finite differences, screening)
+  int threads = 2;  // simulations at once (finite differences, screening)
+  // The forward-sensitivity runs the parameters are shared among (alternately), whatever the
+  // thread count: CVODES controls its steps on the states and the sensitivities it carries
+  // together, so a grouping that followed the threads would move the estimates with -j (by some
+  // 1e-8). Two: what the default two threads run at once.
+  int sensitivity_groups = 2;
   double difference_step = 1e-4;  // of each parameter's bound range, for forward differences
   int max_iterations = 50;
   // Levenberg-Marquardt stops when an iteration lowers the cost by less than this fraction.

@@ -361,6 +361,30 @@ identification: [0 s, 400 s]
             .starts_with(file + ":5:7: error: set[0]: scenario 'model' does not take it"));
 }
 
+TEST_CASE("A fit's estimates are the same on one, two and three threads", "[thread]") {
+  // The sensitivities are integrated in the same groups whatever the thread count, so the
+  // threads change the fit's speed only.
+  const std::string data = protocol_measurement(1e-3, 6);
+  auto problem = base_problem(
+      data, {"muscle.mechanics.k1", "muscle.thermal_force.kappa_c", "muscle.mechanics.damping"});
+  problem.identification = {0.0, 120.0};
+  problem.validation = {120.0, 160.0};
+  fit::FitSettings settings;
+  settings.starts = 2;
+  settings.max_iterations = 4;
+  std::vector<fit::FitResult> results;
+  for (const int threads : {1, 2, 3}) {
+    settings.threads = threads;
+    results.push_back(fit::fit_model(problem, settings));
+  }
+  for (const auto& result : results) {
+    CHECK(result.gradient == results[0].gradient);
+    CHECK(result.cost == results[0].cost);
+    for (std::size_t j = 0; j < result.estimates.size(); ++j)
+      CHECK(result.estimates[j].value == results[0].estimates[j].value);
+  }
+}
+
 TEST_CASE("A fit on two threads writes a report whose fitted scenario reruns to the fitted outputs",
           "[thread]") {
   const std::string data = protocol_measurement(1e-3, 5);
