@@ -208,13 +208,12 @@ bool builds_without(const KindRegistry& kinds, const Kind& kind, const KindExamp
   for (std::size_t dot = path.find('.'); dot != std::string::npos; dot = path.find('.')) {
     std::string part = path.substr(0, dot);
     path = path.substr(dot + 1);
-    std::size_t index = 0;
-    if (const std::size_t bracket = part.find('['); bracket != std::string::npos) {
-      index = std::stoul(part.substr(bracket + 1));
-      part = part.substr(0, bracket);
+    const std::size_t bracket = part.find('[');
+    YAML::Node next = section[part.substr(0, bracket)];
+    if (bracket != std::string::npos) {
+      if (!next.IsSequence()) return true;
+      next.reset(next[std::stoul(part.substr(bracket + 1))]);
     }
-    YAML::Node next = section[part];
-    if (next.IsSequence()) next.reset(next[index]);
     if (!next.IsMap()) return true;
     section.reset(next);
   }
