@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -98,20 +99,33 @@ std::vector<KeyRead> example_reads(const KindRegistry& kinds, const Kind& kind,
 }  // namespace
 
 namespace {
-// The value an example gives the choice at `path` below its section ("mode" -> "duty"), read
-// from its text; "" where it is not a plain scalar there.
-std::string example_choice(const KindExample& example, const std::string& path) {
-  YAML::Node node = YAML::Load(example.text);
-  std::string rest = example.node + "." + path;
+// The node at `path` ("muscle.effects[0].force") in `root`, part of `root` (it walks with
+// reset(), not assignment, which would overwrite); none where the path leads nowhere.
+std::optional<YAML::Node> node_at(const YAML::Node& root, const std::string& path) {
+  YAML::Node node = root;
+  std::string rest = path;
   while (!rest.empty()) {
     const std::size_t dot = rest.find('.');
     const std::string part = rest.substr(0, dot);
     rest = dot == std::string::npos ? "" : rest.substr(dot + 1);
-    if (part.find('[') != std::string::npos || !node.IsMap()) return "";
-    node = node[part];
-    if (!node) return "";
+    const std::size_t bracket = part.find('[');
+    if (!node.IsMap()) return std::nullopt;
+    YAML::Node next = node[part.substr(0, bracket)];
+    if (bracket != std::string::npos) {
+      if (!next.IsSequence()) return std::nullopt;
+      next.reset(next[std::stoul(part.substr(bracket + 1))]);
+    }
+    if (!next) return std::nullopt;
+    node.reset(next);
   }
-  return node.IsScalar() ? node.Scalar() : "";
+  return node;
+}
+
+// The value an example gives the choice at `path` below its section ("mode" -> "duty"), read
+// from its text; "" where it is not a plain scalar there.
+std::string example_choice(const KindExample& example, const std::string& path) {
+  const auto node = node_at(YAML::Load(example.text), example.node + "." + path);
+  return node && node->IsScalar() ? node->Scalar() : "";
 }
 
 // What one example reads: its keys, and the value of each choice it makes.
@@ -202,22 +216,12 @@ std::string alternative(const std::string& key, const std::vector<KindKey>& keys
 bool builds_without(const KindRegistry& kinds, const Kind& kind, const KindExample& example,
                     const std::string& key, std::shared_ptr<const UnitSystem> units) {
   if (key.find('[') != std::string::npos) return true;
-  YAML::Node root = YAML::Load(example.text);
-  YAML::Node section = root;
-  std::string path = example.node + "." + key;
-  for (std::size_t dot = path.find('.'); dot != std::string::npos; dot = path.find('.')) {
-    std::string part = path.substr(0, dot);
-    path = path.substr(dot + 1);
-    const std::size_t bracket = part.find('[');
-    YAML::Node next = section[part.substr(0, bracket)];
-    if (bracket != std::string::npos) {
-      if (!next.IsSequence()) return true;
-      next.reset(next[std::stoul(part.substr(bracket + 1))]);
-    }
-    if (!next.IsMap()) return true;
-    section.reset(next);
-  }
-  section.remove(path);
+  const YAML::Node root = YAML::Load(example.text);
+  const std::string path = example.node + "." + key;
+  const std::size_t dot = path.rfind('.');
+  auto section = node_at(root, path.substr(0, dot));
+  if (!section || !section->IsMap()) return true;
+  section->remove(path.substr(dot + 1));
   const ExampleScenario where(example, kind.name + "_example.yaml");
   try {
     build_scenario(ConfigNode::load_text(YAML::Dump(root), where.name(), {}, units), kinds);
