@@ -142,7 +142,6 @@ channels:
 def one_case(arguments, inputs, effect, noise_mn, seed):
     name = f"{effect}_{noise_mn}mN_seed{seed}"
     directory = os.path.join(arguments.out, name)
-    os.makedirs(directory, exist_ok=True)
     rng = random.Random(f"{effect} {noise_mn} {seed}")
     truth = [f"{path}={value * rng.uniform(0.8, 1.2):.10g} {unit}"
              for path, (value, unit) in BASE_PARAMETERS.items()]
@@ -157,6 +156,9 @@ def one_case(arguments, inputs, effect, noise_mn, seed):
             result = json.load(file)
         if result.get("definition") == definition and "verdict" in result:
             return result
+    if arguments.table_only:
+        return None
+    os.makedirs(directory, exist_ok=True)
     log = os.path.join(directory, "log.txt")
     open(log, "w", encoding="utf-8").close()
     tool = os.path.join(arguments.build, "tcpmsim")
@@ -227,6 +229,7 @@ def main():
     parser.add_argument("--check", action="store_true",
                         help="exit 1 unless every case's verdict is its hidden effect (none: none)")
     arguments = parser.parse_args()
+    arguments.resume = arguments.resume or arguments.table_only
     if arguments.effects is None:
         families = declared_families(os.path.join(arguments.build, "tcpmsim"))
         arguments.effects = ",".join(["none"] + families)
@@ -237,7 +240,7 @@ def main():
         sys.exit("discover_matrix: the protocol run failed")
     cases = [(effect, float(noise) if "." in noise else int(noise), seed)
              for effect in arguments.effects.split(",") for noise in arguments.noise.split(",")
-             for seed in range(1, arguments.seeds + 1)]
+             for seed in arguments.seeds]
     results = run_cases([(arguments, inputs, *case) for case in cases], one_case,
                         arguments.cases_at_once,
                         ("case", "form", "verdict", "gap_shrink", "gap_closed", "seconds", "error"))

@@ -95,7 +95,6 @@ def comparable(definition):
 def one_case(arguments, effect, form, noise_mn, seed):
     name = case_name(effect, form, noise_mn, seed)
     directory = os.path.join(arguments.out, name)
-    os.makedirs(directory, exist_ok=True)
     outputs = "force,inductance_measure" if arguments.inductance else "force"
     definition, _, _ = ie.define_case(effect, seed, noise_mn, form=form,
                                       controls=arguments.controls, style=arguments.protocol)
@@ -107,6 +106,9 @@ def one_case(arguments, effect, form, noise_mn, seed):
         if (comparable(result.get("definition")) == comparable(json.loads(json.dumps(definition)))
                 and "verdict" in result):
             return result
+    if arguments.table_only:
+        return None
+    os.makedirs(directory, exist_ok=True)
     start = time.time()
     with GENERATOR_LOCK:  # SciPy's LSODA solves one problem at a time in a process
         case = ie.make_case(effect, seed, noise_mn, form=form, controls=arguments.controls,
@@ -231,6 +233,7 @@ def main():
                         help="exit 1 unless every verdict is the right one (the hidden effect; "
                         "unexplained for one without a candidate; none for none)")
     arguments = parser.parse_args()
+    arguments.resume = arguments.resume or arguments.table_only
     families = declared_families(os.path.join(arguments.build, "tcpmsim"))
     arguments.families = set(families)
     for family in families:
@@ -249,7 +252,7 @@ def main():
     os.makedirs(arguments.out, exist_ok=True)
     cases = [(*parse_effect(entry), float(noise) if "." in noise else int(noise), seed)
              for entry in arguments.effects.split(",") for noise in arguments.noise.split(",")
-             for seed in range(1, arguments.seeds + 1)]
+             for seed in arguments.seeds]
     results = run_cases([(arguments, *case) for case in cases], one_case, arguments.cases_at_once,
                         ("case", "form", "verdict", "expected", "gap_shrink", "gap_closed_force",
                          "seconds", "error"))

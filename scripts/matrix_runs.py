@@ -29,10 +29,13 @@ def declared_families(tool):
 
 def run_cases(cases, one_case, at_once, printed):
     """`one_case(*case)` for every case, `at_once` at a time, in order; prints the keys
-    `printed` of each result as JSON as it ends."""
+    `printed` of each result as JSON as it ends. A case whose result is None (not run with
+    --table-only) is left out."""
     results = []
     with concurrent.futures.ThreadPoolExecutor(at_once) as pool:
         for result in pool.map(lambda case: one_case(*case), cases):
+            if result is None:
+                continue
             print(json.dumps({k: result.get(k) for k in printed}), flush=True)
             results.append(result)
     return results
@@ -53,6 +56,20 @@ def finish(name, out, results, text, expected, check):
         sys.exit(f"{name}: wrong verdicts: " + ", ".join(wrong))
 
 
+def seed_list(text):
+    """The seeds `--seeds` names: "5" is 1 to 5; "2-3,5" is 2, 3 and 5."""
+    try:
+        if text.isdigit():
+            return list(range(1, int(text) + 1))
+        seeds = []
+        for part in text.split(","):
+            first, _, last = part.partition("-")
+            seeds += list(range(int(first), int(last or first) + 1))
+        return seeds
+    except ValueError as error:
+        raise argparse.ArgumentTypeError(f"not a seed count or list: {text}") from error
+
+
 def parser_for(doc, root, out, effects_help):
     """The command line both matrices take; each adds its own options."""
     parser = argparse.ArgumentParser(description=doc,
@@ -60,7 +77,8 @@ def parser_for(doc, root, out, effects_help):
     parser.add_argument("--build", default=os.path.join(root, "build"))
     parser.add_argument("--out", default=os.path.join(root, out))
     parser.add_argument("--noise", default="1,2,4", help="load-cell noise levels [mN]")
-    parser.add_argument("--seeds", type=int, default=5)
+    parser.add_argument("--seeds", type=seed_list, default=seed_list("5"),
+                        help="N for seeds 1 to N, or a list and ranges such as 2-3 or 2,4")
     parser.add_argument("--effects", default=None,
                         help=effects_help + "; default: none and every family discover tries "
                         "(tcpmsim kinds --discover-families)")
@@ -70,6 +88,9 @@ def parser_for(doc, root, out, effects_help):
     parser.add_argument("--resume", action="store_true",
                         help="reuse the cases of --out already finished with the same definition "
                         "(a long matrix can run in pieces)")
+    parser.add_argument("--table-only", action="store_true",
+                        help="run nothing: the table of the cases of --out already finished with "
+                        "the same definition (implies --resume)")
     parser.add_argument("--no-inductance", dest="inductance", action="store_false",
                         help="compare the force only (no L* output, no inductance candidate)")
     return parser
