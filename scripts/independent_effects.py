@@ -281,11 +281,14 @@ class Effect:
       inductance(trace, own)              its term in L* (7.3) at the samples
 
     `same_as_tcpmsim` marks a form whose law is one of tcpmsim's own effects (a control: drawn
-    only when asked for)."""
+    only when asked for). `held_out` marks a form kept out of the matrix's draws, to be named
+    with --effects EFFECT:FORM once, after the catalogue is settled: a check of the class on
+    shapes that no change of the catalogue was tuned on."""
     effect = ""
     form = ""
     states: tuple = ()
     same_as_tcpmsim = False
+    held_out = False
 
     def initial(self, inputs, truth):
         return [0.0] * len(self.states)
@@ -317,7 +320,8 @@ class Effect:
         parameters = {f.name: _plain(getattr(self, f.name)) for f in dataclasses.fields(self)}
         return {"effect": self.effect, "form": self.form,
                 "equation": " ".join((self.__doc__ or "").split("\n\n")[0].split()),
-                "parameters": parameters, "same_as_tcpmsim": self.same_as_tcpmsim}
+                "parameters": parameters, "same_as_tcpmsim": self.same_as_tcpmsim} | (
+                    {"held_out": True} if self.held_out else {})
 
 
 def _plain(value):
@@ -923,31 +927,208 @@ class SaturatingRatchet(LinearRatchet):
                 _positive_part(1.0 - own[0] / self.limit))
 
 
+# --- held-out forms ---------------------------------------------------------------------------
+# Shapes no change of discover's catalogue was tuned on (`held_out`): never drawn by the matrix,
+# named once with --effects EFFECT:FORM to check the class.
+
+@dataclasses.dataclass(frozen=True)
+class AsymmetricDahl(Effect):
+    """Hysteresis that saturates at different forces on loading and unloading (Dahl's law with
+    a direction-dependent limit): dz/dt = k_h (v - |v| z / F_v), F_v = F_up for v > 0 and F_down
+    for v < 0, so z stays in [-F_down, F_up]; tcpmsim's elements are symmetric."""
+    stiffness: float = 6.0     # k_h, N/m
+    force_up: float = 8e-3     # F_up, N
+    force_down: float = 3e-3   # F_down, N
+    effect = "hysteresis"
+    form = "asymmetric_dahl"
+    states = ("z",)
+    held_out = True
+
+    @classmethod
+    def make(cls, size, rng):
+        return cls(stiffness=6.0 * size)
+
+    def derivatives(self, own, env, truth):
+        z, v = own[0], env.v
+        limit = self.force_up if v > 0.0 else self.force_down
+        return (self.stiffness * (v - abs(v) * z / limit),)
+
+    def force(self, trace, own):
+        return own[0]
+
+
+@dataclasses.dataclass(frozen=True)
+class EyringBranch(Effect):
+    """Slow relaxation through a stress-activated (Eyring) dashpot: a Maxwell branch
+    dF/dt = k v - (F_0 / tau) sinh(F / F_0), tau = 300 s, F_0 = 10 mN: it relaxes faster the
+    more it carries, so no fixed time constant describes it."""
+    stiffness: float = 2.0     # k, N/m
+    tau: float = 300.0         # s
+    scale: float = 10e-3       # F_0, N
+    effect = "slow_relaxation"
+    form = "eyring_branch"
+    states = ("F",)
+    held_out = True
+
+    @classmethod
+    def make(cls, size, rng):
+        return cls(stiffness=2.0 * size)
+
+    def derivatives(self, own, env, truth):
+        return (self.stiffness * env.v - self.scale / self.tau * math.sinh(own[0] / self.scale),)
+
+    def force(self, trace, own):
+        return own[0]
+
+
+@dataclasses.dataclass(frozen=True)
+class QuadraticLoss(Effect):
+    """A heat-transfer coefficient that rises linearly with the temperature rise:
+    Q = hA dT (1 + b |dT|), b = 1/100 per K (40 % more loss at 40 K)."""
+    coefficient: float = 0.01    # b, 1/K
+    effect = "nonlinear_convection"
+    form = "coefficient_linear_in_rise"
+    held_out = True
+
+    @classmethod
+    def make(cls, size, rng):
+        return cls(coefficient=0.01 * size)
+
+    def heat_loss(self, own, env, truth):
+        return truth.conductance * self.coefficient * env.rise * abs(env.rise)
+
+
+@dataclasses.dataclass(frozen=True)
+class HolderMass(Effect):
+    """A second thermal node beside the polymer, not before it: a clamp of heat capacity C_h that
+    the polymer heats through G_h, C_h dth_h/dt = G_h (dT - th_h), the polymer losing
+    G_h (dT - th_h); C_h = 0.3 J/K, tau_h = C_h / G_h = 15 s, starting at ambient."""
+    heat_capacity: float = 0.3    # C_h, J/K
+    tau: float = 15.0             # s
+    effect = "thermal_lag"
+    form = "holder_mass"
+    states = ("theta_h",)
+    held_out = True
+
+    @classmethod
+    def make(cls, size, rng):
+        return cls(heat_capacity=0.3 * size)
+
+    def derivatives(self, own, env, truth):
+        return ((env.rise - own[0]) / self.tau,)
+
+    def heat_loss(self, own, env, truth):
+        return self.heat_capacity / self.tau * (env.rise - own[0])
+
+
+@dataclasses.dataclass(frozen=True)
+class ExponentialStiffening(Effect):
+    """A stiffness that grows exponentially with the deflection (a strain-stiffening polymer):
+    F_n = k_0 s (exp(u / s) - 1 - u / s), u = x - x_0, x_0 = 10 mm, s = 5 mm (stiffness 0 at x_0,
+    k_0 (e^4 - 1) = 54.6 k_0 at 30 mm)."""
+    stiffness: float = 0.1     # k_0, N/m
+    origin: float = 10e-3      # x_0, m
+    scale: float = 5e-3        # s, m
+    effect = "nonlinear_stiffness"
+    form = "exponential"
+    held_out = True
+
+    @classmethod
+    def make(cls, size, rng):
+        return cls(stiffness=0.1 * size)
+
+    def force(self, trace, own):
+        u = (trace.x - self.origin) / self.scale
+        return self.stiffness * self.scale * (np.exp(u) - 1.0 - u)
+
+
+@dataclasses.dataclass(frozen=True)
+class LaggedCoilTemperature(Effect):
+    """The coil's temperature lags the polymer's (the coil is wound on it): L* gains
+    lambda_T th_c, tau_c dth_c/dt = dT - th_c, tau_c = 5 s, lambda_T = -1.5e-3/K; tcpmsim's
+    term follows the polymer's temperature at once."""
+    linear: float = -1.5e-3    # lambda_T, 1/K
+    tau: float = 5.0           # tau_c, s
+    effect = "inductance_temperature"
+    form = "lagged_coil_temperature"
+    states = ("theta_c",)
+    held_out = True
+
+    @classmethod
+    def make(cls, size, rng):
+        return cls(linear=-1.5e-3 * size)
+
+    def derivatives(self, own, env, truth):
+        return ((env.rise - own[0]) / self.tau,)
+
+    def inductance(self, trace, own):
+        return self.linear * own[0]
+
+
+@dataclasses.dataclass(frozen=True)
+class QuadraticRatchet(LinearRatchet):
+    """A ratchet driven by the square of the excess temperature: dl/dt = r max(0, T - T_th)^2,
+    T_th = T_amb + 20 K, r = 6e-8 m/(K^2 s), lowering the force by k1 l; l never decreases."""
+    rate: float = 6.0e-8
+    threshold_rise: float = 20.0
+    form = "quadratic_above_threshold"
+    held_out = True
+
+    @classmethod
+    def make(cls, size, rng):
+        return cls(rate=6.0e-8 * size)
+
+    def growth(self, own, env):
+        return self.rate * _positive_part(env.rise - self.threshold_rise) ** 2
+
+
+@dataclasses.dataclass(frozen=True)
+class FanAboveThreshold(Effect):
+    """A fan switched on by the heater's power (a thermostat's relay, smoothed): hA_eff =
+    hA (1 + g s(P)), s = 1 / (1 + exp(-(P - P_on) / w)), P_on = 1.6 W, w = 0.15 W, g = 0.8."""
+    gain: float = 0.8
+    switch_power: float = 1.6    # P_on, W
+    width: float = 0.15          # w, W
+    effect = "heating_dependent_convection"
+    form = "fan_above_threshold"
+    held_out = True
+
+    @classmethod
+    def make(cls, size, rng):
+        return cls(gain=0.8 * size)
+
+    def heat_loss(self, own, env, truth):
+        switched = 1.0 / (1.0 + math.exp(-(env.power - self.switch_power) / self.width))
+        return self.gain * truth.conductance * switched * env.rise
+
+
 # --- the catalogue ----------------------------------------------------------------------------
 
 FORMS = {
     "none": (),
-    "hysteresis": (PrandtlIshlinskii, BoucWen),
-    "slow_relaxation": (ThreeBranchProny, PowerLawCreep),
-    "nonlinear_convection": (PowerLawCooling, Radiation),
-    "thermal_lag": (TransportDelay, WireChain, WireNode),
-    "nonlinear_stiffness": (CubicStiffening, QuadraticKnee, SoftplusKnee),
+    "hysteresis": (PrandtlIshlinskii, BoucWen, AsymmetricDahl),
+    "slow_relaxation": (ThreeBranchProny, PowerLawCreep, EyringBranch),
+    "nonlinear_convection": (PowerLawCooling, Radiation, QuadraticLoss),
+    "thermal_lag": (TransportDelay, WireChain, WireNode, HolderMass),
+    "nonlinear_stiffness": (CubicStiffening, QuadraticKnee, SoftplusKnee, ExponentialStiffening),
     "temperature_dependent_stiffness": (SoftSls, GlassTransition, ExponentialSoftening,
                                         ParallelSpringSoftening),
     "inductance_temperature": (QuadraticInductanceTemperature, CoilExpansion,
-                               LinearInductanceTemperature),
+                               LinearInductanceTemperature, LaggedCoilTemperature),
     "viscoelastic_relaxation": (FractionalRelaxation, ThermallyActivatedBranch, SecondSls),
-    "ratchet": (LinearRatchet, SaturatingRatchet),
-    "heating_dependent_convection": (PowerBoostedConvection, LaggedBoostedConvection),
+    "ratchet": (LinearRatchet, SaturatingRatchet, QuadraticRatchet),
+    "heating_dependent_convection": (PowerBoostedConvection, LaggedBoostedConvection,
+                                     FanAboveThreshold),
 }
 
 
 def forms_of(effect, controls=False):
     """The forms of an effect that a case draws from: those whose law differs from tcpmsim's,
-    and with `controls` also those that are tcpmsim's own."""
+    and with `controls` also those that are tcpmsim's own; never the held-out ones."""
     if effect not in FORMS:
         raise ValueError(f"unknown effect '{effect}'; one of {', '.join(FORMS)}")
-    return tuple(f for f in FORMS[effect] if controls or not f.same_as_tcpmsim)
+    return tuple(f for f in FORMS[effect]
+                 if not f.held_out and (controls or not f.same_as_tcpmsim))
 
 
 def draw_effect(effect, seed, form=None, size=None, controls=False):
@@ -1214,6 +1395,7 @@ def main(argv=None):
     if arguments.list:
         for effect, forms in FORMS.items():
             print(effect + ": " + (", ".join(f.form + (" (tcpmsim's law)" if f.same_as_tcpmsim
+                                                       else " (held out)" if f.held_out
                                                        else "") for f in forms) or "-"))
         return
     noise = int(arguments.noise) if arguments.noise.is_integer() else arguments.noise
