@@ -8,6 +8,8 @@
 # -timeout-, -oom-) and printed in base64, to become a regression input in fuzz/regressions/.
 #   scripts/fuzz.sh [SECONDS_PER_TARGET (default 60)] [-- extra libFuzzer options]
 #   scripts/fuzz.sh 0 -runs=1000000   # a million executions per target
+# TCPMSIM_FUZZ_SECONDS="fuzz_coil_sequence=20 ..." gives a target a time of its own. The targets
+# run one per core, the slowest to fuzz first, so two short ones can share the last core.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
@@ -25,7 +27,7 @@ elif ! grep -q '^TCPMSIM_FUZZ:BOOL=ON' "$build/CMakeCache.txt"; then
   echo "fuzz: $build is not configured with TCPMSIM_FUZZ=ON" >&2
   exit 2
 fi
-targets=(fuzz_scenario fuzz_measured_csv fuzz_coil_sequence fuzz_fit fuzz_sweep)
+targets=(fuzz_scenario fuzz_fit fuzz_sweep fuzz_measured_csv fuzz_coil_sequence)
 cmake --build "$build" -j"$(nproc)" --target "${targets[@]}"
 
 seeds() {  # the seed directory of a target, made afresh from the repository's inputs
@@ -57,14 +59,22 @@ seeds() {  # the seed directory of a target, made afresh from the repository's i
 # fuzz/regressions/<target> holds every input fuzzing has found to fail: each is run first.
 # scripts/sanitizer_options.sh sets the sanitizers' options, with tests/lsan.supp.
 source scripts/sanitizer_options.sh
+seconds_of() {  # a target's time: its entry in TCPMSIM_FUZZ_SECONDS, or SECONDS_PER_TARGET
+  local entry
+  for entry in ${TCPMSIM_FUZZ_SECONDS:-}; do
+    [[ ${entry%%=*} == "$1" ]] && { echo "${entry#*=}"; return; }
+  done
+  echo "$seconds"
+}
 fuzz_one() {  # fuzzes one target for its time; its log is $build/<target>.log
-  local target=$1 corpus=$build/corpus/$1 seed_dir regressions=()
+  local target=$1 corpus=$build/corpus/$1 seed_dir regressions=() budget
+  budget=$(seconds_of "$target")
   mkdir -p "$corpus"
   seed_dir=$(seeds "$target")
   [[ -d fuzz/regressions/$target ]] && regressions=("fuzz/regressions/$target")
   rm -f "$build/$target-"{crash,leak,timeout,oom}-*
-  echo "fuzz: $target for ${seconds} s ($(ls "$seed_dir" | wc -l) seeds, $(ls "$corpus" | wc -l) in the corpus)"
-  "$build/fuzz/$target" "$corpus" "$seed_dir" "${regressions[@]}" -max_total_time="$seconds" \
+  echo "fuzz: $target for ${budget} s ($(ls "$seed_dir" | wc -l) seeds, $(ls "$corpus" | wc -l) in the corpus)"
+  "$build/fuzz/$target" "$corpus" "$seed_dir" "${regressions[@]}" -max_total_time="$budget" \
     -max_len=65536 -timeout=60 -rss_limit_mb=2048 -artifact_prefix="$build/$target-" \
     -print_final_stats=1 "${fuzz_options[@]}" >"$build/$target.log" 2>&1 || true
 }
