@@ -22,7 +22,8 @@ import statistics
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from matrix_runs import declared_families, finish, parser_for, run, run_cases  # noqa: E402
+from matrix_runs import (acceptance, declared_families, finish, parser_for, run,  # noqa: E402
+                         run_cases)
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BASE = os.path.join(ROOT, "configs/discover/ch7_base.yaml")
@@ -244,7 +245,9 @@ def main():
     results = run_cases([(arguments, inputs, *case) for case in cases], one_case,
                         arguments.cases_at_once,
                         ("case", "form", "verdict", "gap_shrink", "gap_closed", "seconds", "error"))
-    finish("discover_matrix", arguments.out, results, table(results), lambda r: r["effect"],
+    text = table(results) + "\n\n" + acceptance(arguments.out, results, lambda r: r["effect"],
+                                                 lambda r: r.get("gap_closed"))
+    finish("discover_matrix", arguments.out, results, text, lambda r: r["effect"],
            arguments.check)
 
 if __name__ == "__main__":

@@ -32,7 +32,8 @@ import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import independent_effects as ie  # noqa: E402
-from matrix_runs import declared_families, finish, parser_for, run, run_cases  # noqa: E402
+from matrix_runs import (acceptance, declared_families, finish, parser_for, run,  # noqa: E402
+                         run_cases)
 
 # --cases-at-once runs cases on threads; their data are generated one case at a time.
 GENERATOR_LOCK = threading.Lock()
@@ -256,7 +257,11 @@ def main():
     results = run_cases([(arguments, *case) for case in cases], one_case, arguments.cases_at_once,
                         ("case", "form", "verdict", "expected", "gap_shrink", "gap_closed_force",
                          "seconds", "error"))
-    finish("independent_matrix", arguments.out, results, table(results), lambda r: r["expected"],
+    text = table(results) + "\n\n" + acceptance(
+        arguments.out, results, lambda r: r["expected"],
+        lambda r: (r.get("gap_closed_force") if r.get("gap_closed_force") is not None
+                   else r.get("gap_closed_inductance")))
+    finish("independent_matrix", arguments.out, results, text, lambda r: r["expected"],
            arguments.check)
 
 if __name__ == "__main__":

@@ -5,6 +5,7 @@ import argparse
 import concurrent.futures
 import json
 import os
+import statistics
 import subprocess
 import sys
 
@@ -39,6 +40,39 @@ def run_cases(cases, one_case, at_once, printed):
             print(json.dumps({k: result.get(k) for k in printed}), flush=True)
             results.append(result)
     return results
+
+
+def base_far_above_floor(out, result, factor=2.0):
+    """Whether a case's base model misses some output by more than `factor` times the noise
+    floor discover reports (its discovery.json: validation RMSE against noise_floor)."""
+    path = os.path.join(out, result["case"], "discover", "discovery.json")
+    if not os.path.exists(path):
+        return False
+    with open(path, encoding="utf-8") as file:
+        found = json.load(file)
+    rmse = found.get("baseline", {}).get("validation_rmse", {})
+    return any(rmse.get(output, 0.0) > factor * floor
+               for output, floor in found.get("noise_floor", {}).items() if floor)
+
+
+def acceptance(out, results, expected, share):
+    """Issue 28's criteria over the finished cases: effects named right, false alarms on null
+    data, `unexplained` verdicts, `none` where the base misses by more than twice the floor,
+    and the median share of the above-noise gap closed (`share(result)`, None where no gap)."""
+    done = [r for r in results if r.get("verdict")]
+    effects = [r for r in done if r["effect"] != "none"]
+    nulls = [r for r in done if r["effect"] == "none"]
+    right = sum(r["verdict"] == expected(r) for r in effects)
+    alarms = sum(r["verdict"] != "none" for r in nulls)
+    unexplained = sum(r["verdict"] == "unexplained" for r in done)
+    far = [r["case"] for r in done if r["verdict"] == "none" and base_far_above_floor(out, r)]
+    shares = sorted(v for v in (share(r) for r in effects) if v is not None)
+    median = f"{statistics.median(shares):.2f}" if shares else "-"
+    return (f"Acceptance over {len(done)} cases: {right}/{len(effects)} effects named right "
+            f"({100 * right / max(1, len(effects)):.1f} %), false alarms {alarms}/{len(nulls)}, "
+            f"`unexplained` {unexplained}, `none` with the base above twice the floor "
+            f"{len(far)}{' (' + ', '.join(far) + ')' if far else ''}, median share of the "
+            f"above-noise gap closed {median} (over {len(shares)} cases with a gap).")
 
 
 def finish(name, out, results, text, expected, check):
