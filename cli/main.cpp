@@ -755,8 +755,10 @@ int main(int argc, char** argv) {
                    "`none` needs each base validation RMSE within this fraction above its floor")
       ->check(CLI::Range(0.0, 10.0));
   discover_command
-      ->add_option("--min-gap-closed", request.min_gap_closed,
-                   "Share of the gap above the noise floor a named effect must close")
+      ->add_option(
+          "--min-gap-closed", request.min_gap_closed,
+          "Share of the gap above the noise floor a named effect must close, on the outputs "
+          "the base model misses")
       ->check(CLI::Range(0.0, 1.0));
   discover_command->add_option("--set", options.overrides, "Override a value of the model")
       ->type_name("KEY.PATH=VALUE");

@@ -96,16 +96,18 @@ void score(CandidateOutcome& outcome, const Baseline& base, const std::vector<do
       change_norm * residual_norm > 0 ? projection / (change_norm * residual_norm) : 0.0;
   outcome.signature_z = change_norm > 0 ? projection / change_norm : 0.0;
   outcome.validation_change = change;
-  // Where the base model misses by more than the noise, an effect that closes only a sliver of
-  // that gap is not what is missing, however significant its BIC: naming it would hide the rest.
+  // Where the base model misses an output by more than the noise (so `none` is ruled out), an
+  // effect that closes only a sliver of that gap is not what is missing, however significant
+  // its BIC: naming it would hide the rest.
   outcome.gap_closed =
       above_noise_gap_closed(base.result.validation.rmse, result.validation.rmse, setup.floor);
-  const bool above_noise =
-      combined_rmse(base.result.validation.rmse, setup.floor) > 1.0 + request.floor_margin;
+  outcome.missed_gap_closed = missed_gap_closed(base.result.validation.rmse, result.validation.rmse,
+                                                setup.floor, request.floor_margin);
+  const bool misses = !std::isnan(outcome.missed_gap_closed);
   outcome.significant = outcome.delta_bic < -request.bic_threshold &&
                         outcome.gap_shrink > request.min_gap_shrink &&
                         outcome.signature_z >= request.min_signature &&
-                        (!above_noise || outcome.gap_closed >= request.min_gap_closed);
+                        (!misses || outcome.missed_gap_closed >= request.min_gap_closed);
 }
 
 void rank(std::vector<CandidateOutcome>& candidates) {
@@ -303,6 +305,20 @@ double above_noise_gap_closed(const std::vector<double>& base_rmse,
   const double base = combined_rmse(base_rmse, floor);
   if (!(base > 1.0)) return kNaN;
   return (base - combined_rmse(augmented_rmse, floor)) / (base - 1.0);
+}
+
+double missed_gap_closed(const std::vector<double>& base_rmse,
+                         const std::vector<double>& augmented_rmse,
+                         const std::vector<double>& floor, double margin) {
+  std::vector<double> base, augmented, missed_floor;
+  const auto at_noise = at_noise_floor(base_rmse, floor, margin);
+  for (std::size_t k = 0; k < floor.size(); ++k) {
+    if (at_noise[k]) continue;
+    base.push_back(base_rmse[k]);
+    augmented.push_back(augmented_rmse[k]);
+    missed_floor.push_back(floor[k]);
+  }
+  return base.empty() ? kNaN : above_noise_gap_closed(base, augmented, missed_floor);
 }
 
 double combined_rmse(const std::vector<double>& rmse, const std::vector<double>& noise) {

@@ -37,6 +37,9 @@ struct CandidateOutcome {
   std::vector<double> validation_rmse;  // per output
   double gap_shrink = 0.0;              // 1 - combined rmse_aug / rmse_base
   double gap_closed = 0.0;              // of the gap above the noise floor (NaN: none)
+  // Of the gap above the floor of the outputs the base model misses (see missed_gap_closed):
+  // what a significant candidate must close enough of. NaN when the base misses none.
+  double missed_gap_closed = 0.0;
   // Its signature in the validation window, which the fit has not seen: the change d it makes
   // to the outputs against the base model's residual r (noise-weighted sums over the outputs),
   // as the correlation sum(r d) / (|r| |d|), and as the matched-filter statistic
@@ -93,6 +96,14 @@ Discovery discover(const DiscoverSetup& setup);
 double above_noise_gap_closed(const std::vector<double>& base_rmse,
                               const std::vector<double>& augmented_rmse,
                               const std::vector<double>& floor);
+
+// The share of the above-noise gap an augmented model closes on the outputs the base model
+// misses, those whose validation RMSE is above (1 + margin) times their floor: the outputs
+// `none` would not pass. NaN when it misses none. An output at its floor does not dilute the
+// share: a force that misses by 1.4 floors beside an L* at 1.1 is a gap of the force alone.
+double missed_gap_closed(const std::vector<double>& base_rmse,
+                         const std::vector<double>& augmented_rmse,
+                         const std::vector<double>& floor, double margin);
 
 // Whether each output's base validation RMSE is at its noise floor: rmse <= (1 + margin) floor.
 // Whiteness is not required. A model is never exactly the data's law, and with thousands of

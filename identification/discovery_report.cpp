@@ -154,6 +154,7 @@ std::string discovery_json(const Discovery& discovery) {
       entry["validation_rmse"] = rmse_json(discovery, candidate.validation_rmse);
       entry["gap_shrink"] = candidate.gap_shrink;
       entry["gap_closed"] = number_or_null(candidate.gap_closed);
+      entry["missed_gap_closed"] = number_or_null(candidate.missed_gap_closed);
       entry["signature_match"] = candidate.signature_match;
       entry["signature_z"] = candidate.signature_z;
       entry["significant"] = candidate.significant;
@@ -337,8 +338,10 @@ std::string discovery_report(const Discovery& discovery) {
       << "makes to the outputs explains the base model's validation residual, which no fit has "
       << "seen (its signature: the matched-filter z = sum(r d) / |d| in noise units, standard "
       << "normal for a residual of noise alone, at least " << text(request.min_signature)
-      << "), and, where the base model misses by more than the noise, it closes at least "
-      << text(100 * request.min_gap_closed) << " % of the gap above the noise floor"
+      << "), and, where the base model misses an output by more than the noise (beyond "
+      << text(100 * request.floor_margin) << " % of its floor), it closes at least "
+      << text(100 * request.min_gap_closed)
+      << " % of the gap above the floor of the outputs the base model misses"
       << ". Every candidate starts from the base fit with its effect at zero size, where it is "
          "the base model, so its fit can only end at or below the base model's cost; one that "
          "ends above is fitted again from there and otherwise reported as failed. Within a "
@@ -387,12 +390,12 @@ std::string discovery_report(const Discovery& discovery) {
       out << ".\n";
     }
     const auto* best = discovery.candidates.empty() ? nullptr : &discovery.candidates.front();
-    const double closed = best && best->status == "fitted"
-                              ? above_noise_gap_closed(discovery.base.validation.rmse,
-                                                       best->validation_rmse, discovery.setup.floor)
+    const double closed = best && best->status == "fitted" && !std::isnan(best->missed_gap_closed)
+                              ? best->missed_gap_closed
                               : 0.0;
     out << "\nThe best candidate" << (best ? " (" + best->name + ", " + best->member + ")" : "")
-        << " closes " << text(100 * closed, 3) << " % of the gap above the noise floor; "
+        << " closes " << text(100 * closed, 3)
+        << " % of the gap above the noise floor of the outputs the base model misses; "
         << text(100 * (1 - closed), 3) << " % remains.\n";
   }
   return out.str();
