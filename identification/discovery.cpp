@@ -103,11 +103,11 @@ void score(CandidateOutcome& outcome, const Baseline& base, const std::vector<do
       above_noise_gap_closed(base.result.validation.rmse, result.validation.rmse, setup.floor);
   outcome.missed_gap_closed = missed_gap_closed(base.result.validation.rmse, result.validation.rmse,
                                                 setup.floor, request.floor_margin);
-  const bool misses = !std::isnan(outcome.missed_gap_closed);
-  outcome.significant = outcome.delta_bic < -request.bic_threshold &&
-                        outcome.gap_shrink > request.min_gap_shrink &&
-                        outcome.signature_z >= request.min_signature &&
-                        (!misses || outcome.missed_gap_closed >= request.min_gap_closed);
+  outcome.significant =
+      outcome.delta_bic < -request.bic_threshold && outcome.gap_shrink > request.min_gap_shrink &&
+      outcome.signature_z >= request.min_signature &&
+      closes_enough_of_missed_gap(base.result.validation.rmse, result.validation.rmse, setup.floor,
+                                  request.floor_margin, request.min_gap_closed);
 }
 
 void rank(std::vector<CandidateOutcome>& candidates) {
@@ -319,6 +319,14 @@ double missed_gap_closed(const std::vector<double>& base_rmse,
     missed_floor.push_back(floor[k]);
   }
   return base.empty() ? kNaN : above_noise_gap_closed(base, augmented, missed_floor);
+}
+
+bool closes_enough_of_missed_gap(const std::vector<double>& base_rmse,
+                                 const std::vector<double>& augmented_rmse,
+                                 const std::vector<double>& floor, double margin,
+                                 double min_share) {
+  const double share = missed_gap_closed(base_rmse, augmented_rmse, floor, margin);
+  return std::isnan(share) || share >= min_share;
 }
 
 double combined_rmse(const std::vector<double>& rmse, const std::vector<double>& noise) {

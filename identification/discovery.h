@@ -105,6 +105,13 @@ double missed_gap_closed(const std::vector<double>& base_rmse,
                          const std::vector<double>& augmented_rmse,
                          const std::vector<double>& floor, double margin);
 
+// The rule a significant candidate must also pass: where the base model misses an output (see
+// missed_gap_closed), the candidate closes at least `min_share` of that gap; where it misses
+// none, nothing is asked.
+bool closes_enough_of_missed_gap(const std::vector<double>& base_rmse,
+                                 const std::vector<double>& augmented_rmse,
+                                 const std::vector<double>& floor, double margin, double min_share);
+
 // Whether each output's base validation RMSE is at its noise floor: rmse <= (1 + margin) floor.
 // Whiteness is not required. A model is never exactly the data's law, and with thousands of
 // samples Ljung-Box finds a structured part of a few percent of the noise variance; the margin is

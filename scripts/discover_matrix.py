@@ -22,8 +22,8 @@ import statistics
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from matrix_runs import (acceptance, declared_families, finish, parser_for, run,  # noqa: E402
-                         run_cases)
+from matrix_runs import (acceptance, declared_families, finish, parse,  # noqa: E402
+                         parser_for, run, run_cases)
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BASE = os.path.join(ROOT, "configs/discover/ch7_base.yaml")
@@ -229,8 +229,7 @@ def main():
     parser = parser_for(__doc__, ROOT, "results/discover_matrix", "hidden effects")
     parser.add_argument("--check", action="store_true",
                         help="exit 1 unless every case's verdict is its hidden effect (none: none)")
-    arguments = parser.parse_args()
-    arguments.resume = arguments.resume or arguments.table_only
+    arguments = parse(parser)
     if arguments.effects is None:
         families = declared_families(os.path.join(arguments.build, "tcpmsim"))
         arguments.effects = ",".join(["none"] + families)

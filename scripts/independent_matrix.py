@@ -32,8 +32,8 @@ import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import independent_effects as ie  # noqa: E402
-from matrix_runs import (acceptance, declared_families, finish, parser_for, run,  # noqa: E402
-                         run_cases)
+from matrix_runs import (acceptance, declared_families, finish, parse,  # noqa: E402
+                         parser_for, run, run_cases)
 
 # --cases-at-once runs cases on threads; their data are generated one case at a time.
 GENERATOR_LOCK = threading.Lock()
@@ -233,8 +233,7 @@ def main():
     parser.add_argument("--check", action="store_true",
                         help="exit 1 unless every verdict is the right one (the hidden effect; "
                         "unexplained for one without a candidate; none for none)")
-    arguments = parser.parse_args()
-    arguments.resume = arguments.resume or arguments.table_only
+    arguments = parse(parser)
     families = declared_families(os.path.join(arguments.build, "tcpmsim"))
     arguments.families = set(families)
     for family in families:

@@ -66,7 +66,7 @@ def acceptance(out, results, expected, share):
     alarms = sum(r["verdict"] != "none" for r in nulls)
     unexplained = sum(r["verdict"] == "unexplained" for r in done)
     far = [r["case"] for r in done if r["verdict"] == "none" and base_far_above_floor(out, r)]
-    shares = sorted(v for v in (share(r) for r in effects) if v is not None)
+    shares = [v for v in (share(r) for r in effects) if v is not None]
     median = f"{statistics.median(shares):.2f}" if shares else "-"
     return (f"Acceptance over {len(done)} cases: {right}/{len(effects)} effects named right "
             f"({100 * right / max(1, len(effects)):.1f} %), false alarms {alarms}/{len(nulls)}, "
@@ -102,6 +102,13 @@ def seed_list(text):
         return seeds
     except ValueError as error:
         raise argparse.ArgumentTypeError(f"not a seed count or list: {text}") from error
+
+
+def parse(parser):
+    """The arguments, with --table-only implying --resume (it reads what --resume reuses)."""
+    arguments = parser.parse_args()
+    arguments.resume = arguments.resume or arguments.table_only
+    return arguments
 
 
 def parser_for(doc, root, out, effects_help):

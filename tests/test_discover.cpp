@@ -79,6 +79,8 @@ TEST_CASE(
   const double force_share = (2.7825 / 2.0213 - 2.7775 / 2.0213) / (2.7825 / 2.0213 - 1.0);
   CHECK(fit::missed_gap_closed(base, sliver, floor, 0.25) == Approx(force_share).epsilon(1e-9));
   CHECK(force_share < 0.01);
+  // So it is not significant, while combined with L* (the rule before) it was let through.
+  CHECK_FALSE(fit::closes_enough_of_missed_gap(base, sliver, floor, 0.25, 0.2));
   // Closing the force's gap whole is a share of one, whatever L* does within its floor.
   CHECK(fit::missed_gap_closed(base, {2.0213e-3, 5.0e-4}, floor, 0.25) ==
         Approx(1.0).epsilon(1e-9));
@@ -87,8 +89,10 @@ TEST_CASE(
   const std::vector<double> halfway = {3e-3, 0.75e-3};
   CHECK(fit::missed_gap_closed(both, halfway, floor, 0.25) ==
         Approx(fit::above_noise_gap_closed(both, halfway, floor)).epsilon(1e-12));
+  CHECK(fit::closes_enough_of_missed_gap(base, {2.0213e-3, 5.0e-4}, floor, 0.25, 0.2));
   // A base at its floors misses nothing: no share is asked of a candidate.
   CHECK(std::isnan(fit::missed_gap_closed({2.1e-3, 5e-4}, {2.0e-3, 5e-4}, floor, 0.25)));
+  CHECK(fit::closes_enough_of_missed_gap({2.1e-3, 5e-4}, {2.0999e-3, 5e-4}, floor, 0.25, 0.2));
 }
 
 TEST_CASE("Spikes are replaced; a noisy smooth signal and a noisy staircase are left alone") {
