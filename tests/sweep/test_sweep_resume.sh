@@ -16,6 +16,29 @@ trap 'rm -rf "$work"' EXIT
 sweep="$source_dir/tests/sweep/resume_sweep.yaml"
 python=/usr/bin/python3
 fail() { echo "FAIL: $*"; exit 1; }
+# The processes of session `$1` (from /proc: a stat line's fields after the command are state,
+# parent, group and session).
+session_members() {
+  local stat line fields
+  for stat in /proc/[0-9]*/stat; do
+    read -r line 2>/dev/null <"$stat" || continue
+    read -ra fields <<<"${line##*) }"
+    [[ ${fields[3]} == "$1" ]] && echo "${stat//[^0-9]/}"
+  done
+}
+# Kills every process of session `$1` and waits until none is left. A launcher's ranks are not
+# in its process group (Open MPI gives each its own), only in its session: killing the group
+# left them storing runs into the resumed sweep's parts.
+kill_session() {
+  local members
+  for _ in $(seq 1 500); do
+    members=$(session_members "$1")
+    [[ -z $members ]] && return 0
+    kill -KILL $members 2>/dev/null
+    sleep 0.01
+  done
+  fail "processes of the killed sweep survive: $(session_members "$1")"
+}
 
 "${launcher[@]}" "$tcpmsim" sweep "$sweep" "${jobs[@]}" -q -o "$work/whole.h5" || fail "the uninterrupted sweep"
 
@@ -26,8 +49,8 @@ for _ in $(seq 1 3000); do  # until a few runs are stored (at most 30 s)
   ((count >= 4)) && break
   sleep 0.01
 done
-kill -KILL -- "-$pid" 2>/dev/null
-wait "$pid" 2>/dev/null
+kill_session "$pid"
+{ wait "$pid"; } 2>/dev/null
 [[ -e $work/killed.h5 ]] && fail "the sweep finished before it was killed (make it longer)"
 done_runs=$(find "$work/killed.h5.parts" -name 'run_*.h5' | wc -l)
 echo "ok: killed with $done_runs of 24 runs stored, no output file"
@@ -36,8 +59,10 @@ echo "ok: killed with $done_runs of 24 runs stored, no output file"
 grep -q -- "--resume" "$work/err" || fail "the refusal does not mention --resume: $(cat "$work/err")"
 echo "ok: without --resume the interrupted sweep is refused"
 
-"${launcher[@]}" "$tcpmsim" sweep "$sweep" "${jobs[@]}" --resume -o "$work/killed.h5" >"$work/out" 2>"$work/err" || fail "the resume"
-grep -q "done before the resume" "$work/out" || fail "the resume did not reuse the stored runs: $(cat "$work/out")"
+"${launcher[@]}" "$tcpmsim" sweep "$sweep" "${jobs[@]}" --resume -o "$work/killed.h5" >"$work/out" 2>"$work/err" ||
+  fail "the resume: $(cat "$work/out" "$work/err")"
+grep -q "($done_runs done before the resume)" "$work/out" ||
+  fail "the resume did not reuse exactly the $done_runs stored runs: $(cat "$work/out")"
 [[ -e $work/killed.h5.parts ]] && fail "the parts were not removed after the merge"
 $python "$source_dir/tools/compare_sweeps.py" "$work/whole.h5" "$work/killed.h5" || fail "the resumed sweep differs"
 echo "ok: the resumed sweep equals the uninterrupted one"
