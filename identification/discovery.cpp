@@ -120,13 +120,45 @@ void rank(std::vector<CandidateOutcome>& candidates) {
   });
 }
 
+// Adds `earlier`'s effort to `result`'s.
+void count_effort(FitResult& result, const FitResult& earlier) {
+  result.simulations += earlier.simulations;
+  result.iterations += earlier.iterations;
+}
+
+// A refit from the nested start that never left it: at zero size an effect's shape parameters
+// (a knee's position and sharpness, a time constant) change nothing, so their gradient is zero
+// and Levenberg-Marquardt grows the size, if at all, in the shape it started with. The best
+// drawn start is then refined too, and the lower of the two kept. "Never left": the cost fell by
+// less than half a unit (one unit of chi-squared), far below any significant BIC change.
+void retry_from_drawn_start(CandidateOutcome& outcome, const FitSettings& settings) {
+  const FitResult& first = outcome.result;
+  if (settings.starts == 0 || first.refined_start != 0 || first.cost < outcome.nested_cost - 0.5)
+    return;
+  FitSettings drawn = settings;
+  drawn.drawn_starts_only = true;
+  FitResult again = fit_model(outcome.spec.problem, drawn);
+  outcome.retried_from_drawn = true;
+  outcome.drawn_kept = again.cost < first.cost;
+  if (outcome.drawn_kept) {
+    count_effort(again, first);
+    again.start_cost = first.start_cost;
+    again.refined_start = 0;
+    outcome.result = std::move(again);
+  } else {
+    count_effort(outcome.result, again);
+  }
+}
+
 // The refit of a candidate whose problem and settings (its nested start first) are in
-// `outcome.spec`, from the best multistart point; again from the nested start alone when that
+// `outcome.spec`, from the best multistart point; again from the best drawn start when that was
+// the nested start and the fit never left it; again from the nested start alone when the fit
 // ended above it.
 void refit_nested(CandidateOutcome& outcome, const FitSettings& settings) {
   const FitProblem& problem = outcome.spec.problem;
   outcome.result = fit_model(problem, settings);
   outcome.nested_cost = outcome.result.start_cost;
+  retry_from_drawn_start(outcome, settings);
   const auto above_nested = [&](const FitResult& result) {
     return result.cost > outcome.nested_cost * (1.0 + 1e-9);
   };
@@ -135,8 +167,7 @@ void refit_nested(CandidateOutcome& outcome, const FitSettings& settings) {
     continuation.starts = 0;
     continuation.max_iterations = 2 * settings.max_iterations;
     FitResult again = fit_model(problem, continuation);
-    again.simulations += outcome.result.simulations;
-    again.iterations += outcome.result.iterations;
+    count_effort(again, outcome.result);
     outcome.result = std::move(again);
     outcome.retried = true;
   }

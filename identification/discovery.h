@@ -28,6 +28,10 @@ struct CandidateOutcome {
   // it was fitted again from there because the multistart ended above it.
   double nested_cost = 0.0;
   bool retried = false;
+  // Whether it was fitted again from its best drawn start because the refit from the nested
+  // start never left it (see refit_nested), and whether that refit is the one kept.
+  bool retried_from_drawn = false;
+  bool drawn_kept = false;
   // Another member of its family has the lower BIC: only the best member of a family competes.
   bool superseded = false;
   FitSpec spec;  // the augmented model's fit

@@ -146,7 +146,9 @@ std::string discovery_json(const Discovery& discovery) {
                             {"order", candidate.order},
                             {"status", candidate.status},
                             {"nested_cost", candidate.nested_cost},
-                            {"retried_from_nested_start", candidate.retried}};
+                            {"retried_from_nested_start", candidate.retried},
+                            {"retried_from_drawn_start", candidate.retried_from_drawn},
+                            {"drawn_start_kept", candidate.drawn_kept}};
     if (candidate.status == "fitted") {
       entry["cost"] = candidate.result.cost;
       entry["superseded_in_family"] = candidate.superseded;
@@ -324,7 +326,8 @@ std::string discovery_report(const Discovery& discovery) {
     }
     out << "| " << candidate.name << " | " << candidate.member
         << (candidate.superseded ? " (not its family's best)" : "")
-        << (candidate.retried ? " (refitted from zero size)" : "") << " | "
+        << (candidate.retried ? " (refitted from zero size)" : "")
+        << (candidate.drawn_kept ? " (refitted from a drawn start)" : "") << " | "
         << text(candidate.delta_bic, 4) << " | " << text(100 * candidate.gap_shrink, 3) << " % | "
         << text(candidate.signature_z, 3) << " (" << text(candidate.signature_match, 2) << ") | "
         << (candidate.significant ? "yes" : "no") << " | " << candidate.signature_evidence

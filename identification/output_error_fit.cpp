@@ -458,20 +458,25 @@ FitResult fit_model(const FitProblem& problem, const FitSettings& settings) {
   run_in_parallel(labels, settings.threads, [&](std::size_t s) {
     costs[s] = residuals.cost(physical(problem, points[s].data()));
   });
-  std::vector<std::size_t> order(points.size());
-  std::iota(order.begin(), order.end(), 0);
+  const std::size_t first_refined = settings.drawn_starts_only && points.size() > 1 ? 1 : 0;
+  std::vector<std::size_t> order(points.size() - first_refined);
+  std::iota(order.begin(), order.end(), first_refined);
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return costs[a] < costs[b]; });
   Refined best;
   best.cost = std::numeric_limits<double>::infinity();
+  std::size_t best_start = 0;
   int iterations = 0;
   const auto refinements =
-      std::min<std::size_t>(points.size(), static_cast<std::size_t>(std::max(1, settings.refine)));
+      std::min<std::size_t>(order.size(), static_cast<std::size_t>(std::max(1, settings.refine)));
   for (std::size_t r = 0; r < refinements; ++r) {
     if (!std::isfinite(costs[order[r]])) break;
     Refined candidate = refine(problem, residuals, settings, sensitivities, points[order[r]]);
     iterations += candidate.iterations;
-    if (candidate.cost < best.cost) best = std::move(candidate);
+    if (candidate.cost < best.cost) {
+      best = std::move(candidate);
+      best_start = order[r];
+    }
   }
   if (!std::isfinite(best.cost)) {
     throw FitFailure("the model could not be simulated at any starting point; the first failure: " +
@@ -481,6 +486,7 @@ FitResult fit_model(const FitProblem& problem, const FitSettings& settings) {
   FitResult result;
   result.cost = best.cost;
   result.start_cost = costs[0];
+  result.refined_start = best_start;
   result.iterations = iterations;
   result.termination = best.termination;
   result.converged = best.converged;

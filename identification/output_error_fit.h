@@ -21,6 +21,9 @@ struct FitSettings {
   // best of them, and the best refined result is the estimate.
   int starts = 8;
   int refine = 1;
+  // Refine only the drawn points, never the first (discover's retry of a candidate whose refit
+  // never left its nested start, where the effect's shape parameters have no gradient).
+  bool drawn_starts_only = false;
   // The multistart draws the parameters from this index on; those before it start at the
   // model's values in every point (discover's candidates: the base model as fitted).
   std::size_t screened_from = 0;
@@ -75,6 +78,7 @@ struct FitResult {
   std::vector<std::string> identifiability;
   double cost = 0.0;               // 1/2 sum of squared weighted residuals at the estimate
   double start_cost = 0.0;         // the same at the first starting point
+  std::size_t refined_start = 0;   // the starting point the estimate was refined from (0: first)
   double residual_variance = 0.0;  // 2 cost / (samples - parameters)
   int iterations = 0;
   int simulations = 0;

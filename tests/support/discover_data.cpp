@@ -14,14 +14,15 @@ const std::string kBase = "configs/discover/ch7_base.yaml";
 }  // namespace
 
 std::string discover_measurement(const std::string& name, std::vector<std::string> hidden,
-                                 const std::string& duration) {
+                                 const std::string& duration, std::uint64_t bench_seed) {
   // The protocol cut to 200 s of multisines to identify and 100 s of random steps to validate,
   // to keep the suite quick; the whole protocol is scripts/discover_matrix.py's.
   hidden.push_back("measurement.file=" + protocol_record(duration));
   hidden.push_back("scenario.duration=" + duration);
   const Scenario truth = load_scenario(source_path(kBase), hidden, shared_units());
-  const auto bench =
+  auto bench =
       fit::load_bench(source_path("configs/discover/ch7_bench.yaml"), truth, shared_units());
+  bench.seed = bench_seed;
   const std::string path =
       (std::filesystem::path(process_directory("discover")) / (name + ".csv")).string();
   std::ofstream(path) << fit::measure(truth, bench, *shared_units());

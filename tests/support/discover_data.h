@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -12,9 +13,10 @@ namespace tcpmsim::testing {
 // read by the chapter-7 bench (load cell 0.5 mN resolution and 1 mN noise, L* jitter and
 // spikes), written as a CSV; its path. The protocol is cut to `duration`: 200 s of multisines to
 // identify, the rest random steps to validate, to keep the suite quick (the whole protocol is
-// scripts/discover_matrix.py's).
+// scripts/discover_matrix.py's). `bench_seed` is the bench's seed: the matrix's case seed.
 std::string discover_measurement(const std::string& name, std::vector<std::string> hidden,
-                                 const std::string& duration = "300 s");
+                                 const std::string& duration = "300 s",
+                                 std::uint64_t bench_seed = 1);
 
 // A request for such data: the simplest member of each family (the nesting test tries them
 // all), two multistart points per fit, validation from 200 s, to keep the suite quick.
