@@ -22,8 +22,8 @@ import statistics
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from matrix_runs import (acceptance, declared_families, finish, parse,  # noqa: E402
-                         parser_for, run, run_cases)
+from matrix_runs import (acceptance, declared_families, finished_case, finish,  # noqa: E402
+                         keep_case, parse, parser_for, run, run_cases)
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BASE = os.path.join(ROOT, "configs/discover/ch7_base.yaml")
@@ -151,11 +151,9 @@ def one_case(arguments, inputs, effect, noise_mn, seed):
     # What defines the case: a finished case with the same definition is reused by --resume.
     definition = {"truth": truth, "hidden": hidden, "noise_mN": noise_mn, "seed": seed,
                   "outputs": outputs}
-    finished = os.path.join(directory, "case.json")
-    if arguments.resume and os.path.exists(finished):
-        with open(finished, encoding="utf-8") as file:
-            result = json.load(file)
-        if result.get("definition") == definition and "verdict" in result:
+    if arguments.resume:
+        result = finished_case(arguments, name, lambda stored: stored == definition)
+        if result is not None:
             return result
     if arguments.table_only:
         return None
@@ -185,8 +183,7 @@ def one_case(arguments, inputs, effect, noise_mn, seed):
               "gap_closed": found.get("gap_closed"), "member": found.get("member"),
               "seconds": found["seconds"], "definition": definition,
               "ranking": [(c["effect"], c.get("delta_bic")) for c in found["ranking"]]}
-    with open(finished, "w", encoding="utf-8") as file:
-        json.dump(result, file, indent=1)
+    keep_case(arguments, result, found)
     return result
 
 

@@ -32,8 +32,8 @@ import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import independent_effects as ie  # noqa: E402
-from matrix_runs import (acceptance, declared_families, finish, parse,  # noqa: E402
-                         parser_for, run, run_cases)
+from matrix_runs import (acceptance, declared_families, finished_case, finish,  # noqa: E402
+                         keep_case, parse, parser_for, run, run_cases)
 
 # --cases-at-once runs cases on threads; their data are generated one case at a time.
 GENERATOR_LOCK = threading.Lock()
@@ -101,11 +101,10 @@ def one_case(arguments, effect, form, noise_mn, seed):
                                       controls=arguments.controls, style=arguments.protocol)
     definition["outputs"] = outputs
     finished = os.path.join(directory, "case.json")
-    if arguments.resume and os.path.exists(finished):
-        with open(finished, encoding="utf-8") as file:
-            result = json.load(file)
-        if (comparable(result.get("definition")) == comparable(json.loads(json.dumps(definition)))
-                and "verdict" in result):
+    if arguments.resume:
+        wanted = comparable(json.loads(json.dumps(definition)))
+        result = finished_case(arguments, name, lambda stored: comparable(stored) == wanted)
+        if result is not None:
             return result
     if arguments.table_only:
         return None
@@ -160,8 +159,7 @@ def one_case(arguments, effect, form, noise_mn, seed):
         "seconds": found.get("seconds"),
         "ranking": [(c["effect"], c.get("delta_bic"), c.get("signature_z"), c.get("significant"))
                     for c in found.get("ranking", [])]})
-    with open(finished, "w", encoding="utf-8") as file:
-        json.dump(result, file, indent=1)
+    keep_case(arguments, result, found)
     return result
 
 

@@ -42,17 +42,61 @@ def run_cases(cases, one_case, at_once, printed):
     return results
 
 
-def base_far_above_floor(out, result, factor=2.0):
-    """Whether a case's base model misses some output by more than `factor` times the noise
-    floor discover reports (its discovery.json: validation RMSE against noise_floor)."""
+def misses_by_twice_the_floor(found, factor=2.0):
+    """Whether discover's report (discovery.json, loaded) has the base model miss some output by
+    more than `factor` times the noise floor it reports."""
+    rmse = found.get("baseline", {}).get("validation_rmse", {})
+    return any(rmse.get(output, 0.0) > factor * floor
+               for output, floor in found.get("noise_floor", {}).items() if floor)
+
+
+def base_far_above_floor(out, result):
+    """Whether a case's base model misses some output by more than twice the noise floor: as
+    its record says, else as its discovery.json in `out` says."""
+    if "base_above_twice_floor" in result:
+        return result["base_above_twice_floor"]
     path = os.path.join(out, result["case"], "discover", "discovery.json")
     if not os.path.exists(path):
         return False
     with open(path, encoding="utf-8") as file:
-        found = json.load(file)
-    rmse = found.get("baseline", {}).get("validation_rmse", {})
-    return any(rmse.get(output, 0.0) > factor * floor
-               for output, floor in found.get("noise_floor", {}).items() if floor)
+        return misses_by_twice_the_floor(json.load(file))
+
+
+def tool_version(tool):
+    """What `tcpmsim --version` prints: the build a case's verdict came from."""
+    return subprocess.run([tool, "--version"], capture_output=True, text=True,
+                          check=False).stdout.strip()
+
+
+def finished_case(arguments, name, same_definition):
+    """The finished case `name` whose definition passes `same_definition`: from its directory
+    in --out, else from --record (the committed records a matrix is resumed from on a new
+    machine); None if neither holds it."""
+    paths = [os.path.join(arguments.out, name, "case.json")]
+    if arguments.record:
+        paths.append(os.path.join(arguments.record, name + ".json"))
+    for path in paths:
+        if not os.path.exists(path):
+            continue
+        with open(path, encoding="utf-8") as file:
+            result = json.load(file)
+        if "verdict" in result and same_definition(result.get("definition")):
+            return result
+    return None
+
+
+def keep_case(arguments, result, found):
+    """Completes a finished case's result with what its acceptance needs from discover's report
+    (`found`) and the build, and writes it to its case.json and, with --record, as a record."""
+    result["base_above_twice_floor"] = misses_by_twice_the_floor(found)
+    result["build"] = tool_version(os.path.join(arguments.build, "tcpmsim"))
+    paths = [os.path.join(arguments.out, result["case"], "case.json")]
+    if arguments.record:
+        os.makedirs(arguments.record, exist_ok=True)
+        paths.append(os.path.join(arguments.record, result["case"] + ".json"))
+    for path in paths:
+        with open(path, "w", encoding="utf-8") as file:
+            json.dump(result, file, indent=1)
 
 
 def acceptance(out, results, expected, share):
@@ -129,6 +173,10 @@ def parser_for(doc, root, out, effects_help):
     parser.add_argument("--resume", action="store_true",
                         help="reuse the cases of --out already finished with the same definition "
                         "(a long matrix can run in pieces)")
+    parser.add_argument("--record", default=None,
+                        help="also keep each finished case as DIR/CASE.json, and resume from "
+                        "there (records small enough to commit, so that a matrix of many "
+                        "hours runs in pieces on different machines)")
     parser.add_argument("--table-only", action="store_true",
                         help="run nothing: the table of the cases of --out already finished with "
                         "the same definition (implies --resume)")
