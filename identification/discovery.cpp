@@ -142,8 +142,6 @@ void retry_from_drawn_start(CandidateOutcome& outcome, const FitSettings& settin
   outcome.drawn_kept = again.cost < first.cost;
   if (outcome.drawn_kept) {
     count_effort(again, first);
-    again.start_cost = first.start_cost;
-    again.refined_start = 0;
     outcome.result = std::move(again);
   } else {
     count_effort(outcome.result, again);
