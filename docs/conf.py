@@ -14,7 +14,8 @@ myst_heading_anchors = 3
 myst_enable_extensions = ["dollarmath", "deflist"]
 nbsphinx_execute = "never"
 
-exclude_patterns = ["_build", "**.ipynb_checkpoints"]
+# matrices/: the hidden-effect matrices' records (JSON) and their README, read on GitHub.
+exclude_patterns = ["_build", "**.ipynb_checkpoints", "matrices"]
 html_theme = "furo"
 html_title = "tcpmsim"
 # Code blocks in languages Pygments does not lex strictly (a shell transcript, a YAML excerpt
