@@ -146,8 +146,13 @@ void retry_from_drawn_start(CandidateOutcome& outcome, const FitSettings& settin
     return;
   FitSettings drawn = settings;
   drawn.drawn_starts_only = true;
-  FitResult again = fit_model(outcome.spec.problem, drawn);
   outcome.retried_from_drawn = true;
+  FitResult again;
+  try {
+    again = fit_model(outcome.spec.problem, drawn);
+  } catch (const FitFailure&) {
+    return;  // no drawn start could be simulated: the first refit stands
+  }
   outcome.drawn_kept = again.cost < first.cost;
   if (outcome.drawn_kept) {
     count_effort(again, first);
