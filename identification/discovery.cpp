@@ -131,6 +131,30 @@ void count_effort(FitResult& result, const FitResult& earlier) {
   result.iterations += earlier.iterations;
 }
 
+// The refit of `problem` from its best drawn start, as a probe of a few iterations first: only
+// if that has gone below `to_beat` (the refit from the nested start) is it refined on, to the
+// iterations `settings` allow. Most candidates the data do not hold never get there, and
+// refining each to the iteration limit was most of the retry's cost.
+FitResult refit_from_drawn_start(const FitProblem& problem, const FitSettings& settings,
+                                 double to_beat) {
+  constexpr int kProbeIterations = 10;
+  FitSettings probe = settings;
+  probe.drawn_starts_only = true;
+  probe.max_iterations = std::min(settings.max_iterations, kProbeIterations);
+  FitResult probed = fit_model(problem, probe);
+  if (probed.converged || probed.cost >= to_beat || probe.max_iterations >= settings.max_iterations)
+    return probed;
+  FitSettings onward = settings;
+  onward.starts = 0;
+  onward.start = values_of(probed);
+  onward.max_iterations = settings.max_iterations - probed.iterations;
+  FitResult refined = fit_model(problem, onward);
+  count_effort(refined, probed);
+  refined.start_cost = probed.start_cost;
+  refined.refined_start = probed.refined_start;
+  return refined;
+}
+
 // A refit from the nested start that never left it: at zero size an effect's shape parameters
 // (a knee's position and sharpness, a time constant) change nothing, so their gradient is zero
 // and Levenberg-Marquardt grows the size, if at all, in the shape it started with. The best
@@ -144,12 +168,10 @@ void retry_from_drawn_start(CandidateOutcome& outcome, const FitSettings& settin
   if (!gap || settings.starts == 0 || first.refined_start != 0 ||
       first.cost < outcome.nested_cost - 0.5)
     return;
-  FitSettings drawn = settings;
-  drawn.drawn_starts_only = true;
   outcome.retried_from_drawn = true;
   FitResult again;
   try {
-    again = fit_model(outcome.spec.problem, drawn);
+    again = refit_from_drawn_start(outcome.spec.problem, settings, first.cost);
   } catch (const FitFailure&) {
     return;  // no drawn start could be simulated: the first refit stands
   }
