@@ -138,7 +138,7 @@ TEST_CASE("A candidate that never leaves its nested start is fitted again from a
   // The own matrix's case nonlinear_stiffness_1mN_seed2 (scripts/discover_matrix.py): a soft
   // knee at 24 mm in the data. At zero size the knee's position and width change nothing, so
   // their gradient is zero; its multistart found the nested start cheapest, and the refit from
-  // there never moved (delta BIC +19, the verdict unexplained). Refined from its best drawn
+  // there never moved (delta BIC +29, the verdict unexplained). Refined from its best drawn
   // start as well, the knee is found and named.
   const std::string data = discover_measurement(
       "stuck_knee",
