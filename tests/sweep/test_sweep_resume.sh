@@ -16,14 +16,15 @@ trap 'rm -rf "$work"' EXIT
 sweep="$source_dir/tests/sweep/resume_sweep.yaml"
 python=/usr/bin/python3
 fail() { echo "FAIL: $*"; exit 1; }
-# The processes of session `$1` (from /proc: a stat line's fields after the command are state,
-# parent, group and session).
+# The live processes of session `$1` (from /proc: a stat line's fields after the command are
+# state, parent, group and session). A zombie is dead already, waiting for its parent to reap it:
+# no signal removes it, so it is not counted.
 session_members() {
   local stat line fields
   for stat in /proc/[0-9]*/stat; do
     read -r line 2>/dev/null <"$stat" || continue
     read -ra fields <<<"${line##*) }"
-    [[ ${fields[3]} == "$1" ]] && echo "${stat//[^0-9]/}"
+    [[ ${fields[3]} == "$1" && ${fields[0]} != Z ]] && echo "${stat//[^0-9]/}"
   done
 }
 # Kills every process of session `$1` and waits until none is left. A launcher's ranks are not
