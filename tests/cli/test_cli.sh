@@ -4,24 +4,7 @@
 set -uo pipefail
 tcpmsim=$1
 source_dir=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-
-expect() {  # expect CODE DESCRIPTION -- COMMAND...
-  local code=$1 description=$2
-  shift 3
-  "$@" >"$work/out" 2>"$work/err"
-  local actual=$?
-  if [[ $actual != "$code" ]]; then
-    echo "FAIL: $description: exit $actual, expected $code"; cat "$work/out" "$work/err"; failures=$((failures + 1))
-  else
-    echo "ok: $description (exit $code)"
-  fi
-}
-contains() {  # contains FILE TEXT DESCRIPTION
-  if grep -qF -- "$2" "$1"; then echo "ok: $3"; else echo "FAIL: $3: '$2' not in:"; cat "$1"; failures=$((failures + 1)); fi
-}
+source "$(dirname "$0")/cli_support.sh"
 
 config="$source_dir/configs/ch7_identification.yaml"
 
@@ -167,7 +150,8 @@ expect 2 "an explicit --data stays relative to the working directory" -- \
   bash -c 'cd "$1" && "$2" coil-fit "$3" --data data/coil-spring-inductance -o "$1/none.h5"' _ \
   "$work" "$tcpmsim" "$source_dir/configs/springs/s1.yaml"
 
-# fit: a measurement (the chapter-7 bench, simulated), a model replaying it, the report.
+# fit: a measurement (the chapter-7 bench, simulated), a model replaying it, and its errors (the
+# whole fits and discover: test_cli_whole_runs.sh).
 discover="$source_dir/configs/discover"
 expect 0 "the chapter-7 bench writes a measurement" -- "$tcpmsim" run "$discover/ch7_protocol.yaml" -o "$work/bench.h5" --quiet
 printf 'time[s],power[W],deflection[mm],force[mN]\n0,1,20,107\n1,1,nan,107\n' >"$work/bad.csv"
@@ -187,14 +171,6 @@ expect 0 "measure reads the model with the bench's instruments" -- "$tcpmsim" me
   --set "measurement.file=$work/bench.h5" --bench "$discover/ch7_bench.yaml" -o "$work/measured.csv" --quiet
 head -1 "$work/measured.csv" >"$work/header"
 contains "$work/header" "time[s],power[W],deflection[mm],force[mN],inductance_measure[1]" "the measurement's headings name channels and units"
-expect 0 "fit takes the synthetic measurement" -- "$tcpmsim" fit "$discover/ch7_fit.yaml" --data "$work/measured.csv" \
-  --out "$work/fit_measured" --set 'multistart.starts=0' --jobs 2 --quiet
-expect 0 "fit writes its report" -- "$tcpmsim" fit "$discover/ch7_fit.yaml" --data "$work/bench.h5" --out "$work/fit" \
-  --set 'multistart.starts=0' --jobs 2
-contains "$work/out" "muscle.mechanics.k1" "the summary lists the parameters"
-contains "$work/out" "validation     force" "the summary scores the validation window"
-[[ -s $work/fit/fit.json && -s $work/fit/fitted.yaml && -s $work/fit/fit.h5 ]] && echo "ok: fit.json, fitted.yaml, fit.h5" || { echo "FAIL: fit outputs missing"; failures=$((failures + 1)); }
-expect 0 "the fitted scenario runs as it is" -- "$tcpmsim" run "$work/fit/fitted.yaml" -o "$work/fitted.h5" --quiet
 # A fit that fails (a force of 1e305 N: its squared residuals overflow) says why, exits 1, and
 # leaves no empty output directory that would look like a result.
 awk -F, 'NR == 100 { $4 = "1e308" } 1' OFS=, "$work/measured.csv" >"$work/overflow.csv"
@@ -276,19 +252,6 @@ expect 3 "discover on a bad measurement is a data-file error" -- "$tcpmsim" disc
   --model "$discover/ch7_base.yaml" --data "$work/bad.csv" --inputs power,deflection \
   --outputs force --validate-from 0.5 --out "$work/discover"
 [[ ! -e $work/discover ]] && echo "ok: nothing written on a discover error" || { echo "FAIL: a discover directory after an error"; failures=$((failures + 1)); }
-# A verdict has its exit code (0 an effect, 10 none, 11 unexplained), and a picture that cannot
-# be drawn is a warning: an installed copy whose plot tool fails still exits with the verdict.
-mkdir -p "$work/installed"
-cp "$tcpmsim" "$work/installed/tcpmsim"
-printf '#!/bin/sh\necho "no plotting here" >&2\nexit 1\n' >"$work/installed/tcpmsim-plot"
-chmod +x "$work/installed/tcpmsim-plot"
-expect 10 "discover on data the base model fits to the noise says none (exit 10)" -- \
-  "$work/installed/tcpmsim" discover --model "$discover/ch7_base.yaml" --data "$work/measured.csv" \
-  --inputs power,deflection --outputs force --validate-from 400 --effects viscoelastic_relaxation \
-  --starts 2 --out "$work/discover_none"
-contains "$work/out" "verdict: none (the base model fits to the noise floor)" "the verdict is printed"
-contains "$work/err" "warning: the plots of $work/discover_none could not be drawn" "a failed picture is a warning"
-contains "$work/discover_none/discovery.json" '"verdict_kind": "none"' "discovery.json carries the verdict's kind"
 expect 2 "discover --noise names an output it compares" -- "$tcpmsim" discover \
   --model "$discover/ch7_base.yaml" --data "$work/measured.csv" --inputs power,deflection \
   --outputs force --validate-from 400 --noise torque=2mN --out "$work/discover"
@@ -351,15 +314,7 @@ with h5py.File(sys.argv[1], "w") as f:
   rm -f "$work/foreign.h5.partial"
 fi
 
-# Provenance (issue 14): every file the commands above wrote carries the version, git commit,
-# command line and configs, and units on every numeric dataset.
-if /usr/bin/python3 -c "import h5py" 2>/dev/null; then
-  mapfile -t written < <(find "$work" -name '*.h5' -size +0 | sort)
-  hdf5_files=$(/usr/bin/python3 -c 'import sys, h5py; print(sum(map(h5py.is_hdf5, sys.argv[1:])))' "${written[@]}")
-  expect 0 "every file written carries its provenance and units" -- /usr/bin/python3 \
-    "$source_dir/tests/python/check_provenance.py" "${written[@]}"
-    contains "$work/out" "checked $hdf5_files file(s): 0 problem(s)" "the provenance check saw every file"
-fi
+check_provenance
 
 if /usr/bin/python3 -c "import h5py, matplotlib" 2>/dev/null; then
   expect 0 "the plot tool reads the record" -- "$source_dir/tools/tcpmsim-plot" traces "$work/run.h5" -o "$work/run.png"
