@@ -37,7 +37,7 @@ std::string source(const std::string& path) {
 
 fs::path scratch(const std::string& name) {
   const fs::path directory =
-      fs::temp_directory_path() / ("tcpmsim_fmu_tests_" + std::to_string(::getpid())) / name;
+      fs::temp_directory_path() / "tcpmsim_tests" / ("fmu_" + std::to_string(::getpid())) / name;
   fs::remove_all(directory);
   fs::create_directories(directory);
   return directory;

@@ -57,7 +57,8 @@ double max_abs_difference(const std::vector<double>& a, const std::vector<double
 bool bitwise_equal(const std::vector<double>& a, const std::vector<double>& b);
 std::string source_path(const std::string& relative);
 // A directory of this test process's own under the temporary directory, "<name>_<pid>" (ctest
-// runs cases in parallel processes, which must not share files), created if missing.
+// runs cases in parallel processes, which must not share files), created if missing. A run that
+// passes removes its process's directories at its end (tests/main.cpp); a failed run keeps them.
 std::string process_directory(const std::string& name);
 // The chapter-7 bench's record (configs/discover/ch7_protocol.yaml, its inputs at 16 Hz), cut to
 // `duration` ("" for the whole 620 s): the measurement the model scenarios replay. Run once per
