@@ -15,6 +15,8 @@ namespace tcpmsim::sweep {
 namespace {
 
 constexpr const char* kIdentityFile = "sweep.identity";
+constexpr const char* kOwnerLock = "sweep.lock";
+constexpr const char* kWritersLock = "writers.lock";
 
 std::string run_name(std::size_t id, std::size_t runs) {
   const std::size_t width = std::to_string(runs > 0 ? runs - 1 : 0).size();
@@ -97,16 +99,21 @@ std::string sweep_identity(const SweepSpec& spec) {
 SweepStore::SweepStore(const SweepSpec& spec, std::string output, Access access)
     : spec_(spec), output_(std::move(output)), parts_(output_ + ".parts") {
   namespace fs = std::filesystem;
-  if (access == Access::join) return;
+  if (access == Access::join) {
+    if (visible()) writer_lock_ = FileLock(parts_ + "/" + kWritersLock, FileLock::Mode::shared);
+    return;
+  }
   prepare_output_file(output_);  // a directory or a device is refused before any run, as by run
+  const std::string identity_file = parts_ + "/" + kIdentityFile;
+  const std::string identity = sweep_identity(spec);
+  const bool interrupted = fs::exists(parts_);
+  create_parent_directories(identity_file);
+  lock_out_other_sweeps();  // before anything of the parts or the output is touched
   // The file is written when the sweep ends; until then its runs are in the parts directory,
   // and an empty partial file left by a killed sweep would only look like a record.
   std::filesystem::remove(partial_path(output_));
-  const bool resume = access == Access::resume;
-  const std::string identity_file = parts_ + "/" + kIdentityFile;
-  const std::string identity = sweep_identity(spec);
-  if (fs::exists(parts_)) {
-    if (!resume)
+  if (interrupted) {
+    if (access != Access::resume)
       throw std::runtime_error("the runs of an interrupted sweep are in " + parts_ +
                                ": --resume to finish it, or remove them to start afresh");
     if (!fs::exists(identity_file) || read_text_file(identity_file) != identity)
@@ -118,8 +125,20 @@ SweepStore::SweepStore(const SweepSpec& spec, std::string output, Access access)
     }
     return;
   }
-  create_parent_directories(identity_file);
   write_text_file(identity_file, identity);
+}
+
+void SweepStore::lock_out_other_sweeps() {
+  owner_lock_ = FileLock(parts_ + "/" + kOwnerLock, FileLock::Mode::exclusive);
+  if (!owner_lock_.taken())
+    throw std::runtime_error("another sweep is writing into " + parts_ +
+                             " now: let it end, or stop it, before this one starts");
+  const std::string writers = parts_ + "/" + kWritersLock;
+  if (!FileLock(writers, FileLock::Mode::exclusive).taken())
+    throw std::runtime_error("processes of an earlier sweep still write into " + parts_ +
+                             " (the ranks of a launcher that was killed before them?): stop "
+                             "them before this sweep starts");
+  writer_lock_ = FileLock(writers, FileLock::Mode::shared);
 }
 
 bool SweepStore::visible() const {

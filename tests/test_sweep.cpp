@@ -341,6 +341,43 @@ TEST_CASE("a resumed sweep redoes only the missing runs and refuses another swee
     CHECK(bitwise_equal(read_column(whole, column), read_column(resumed, column)));
 }
 
+TEST_CASE("no sweep starts into the parts of one that still writes them", "[sweep]") {
+  SweepDirectory directory;
+  const auto spec = load_sweep(directory.write("grid.yaml", kGridSweep), {}, shared_units());
+  const std::string output = (directory.path / "live.h5").string();
+  const std::string parts = output + ".parts";
+  {
+    // A live sweep: the store that created the parts is open, and a rank has joined it.
+    const SweepStore live(spec, output, SweepStore::Access::create);
+    const SweepStore rank(spec, output, SweepStore::Access::join);
+    CHECK(rank.writing());
+    ScenarioLoader loader(shared_units());
+    live.write(execute_run(spec, 0, loader));
+    // A resume beside it would redo its runs and collide with its writes; a new start would
+    // call its parts an interrupted sweep's.
+    CHECK_THROWS_WITH(SweepStore(spec, output, SweepStore::Access::resume),
+                      Catch::Contains("another sweep is writing into " + parts + " now"));
+    CHECK_THROWS_WITH(run_sweep(spec, {output, 1, true}, shared_units()),
+                      Catch::Contains("another sweep is writing into"));
+    CHECK_THROWS_WITH(SweepStore(spec, output, SweepStore::Access::create),
+                      Catch::Contains("another sweep is writing into"));
+    CHECK(live.pending() == std::vector<std::size_t>{1, 2, 3});
+  }
+  {
+    // The ranks of a launcher killed before them: the store that opened the parts is gone, a
+    // writer still holds its lock.
+    const FileLock orphan(parts + "/writers.lock", FileLock::Mode::shared);
+    REQUIRE(orphan.taken());
+    CHECK_THROWS_WITH(run_sweep(spec, {output, 1, true}, shared_units()),
+                      Catch::Contains("processes of an earlier sweep still write into " + parts));
+  }
+  // Once every process of the first sweep has ended, the resume finishes it.
+  const auto outcome = run_sweep(spec, {output, 1, true}, shared_units());
+  CHECK(outcome.resumed == 1);
+  CHECK(outcome.failed == 0);
+  CHECK_FALSE(std::filesystem::exists(parts));
+}
+
 TEST_CASE("a batch of scenario files on two threads writes the records each would alone",
           "[sweep][thread]") {
   SweepDirectory directory;

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 
 #include "sweep/run_pool.h"
@@ -146,15 +147,22 @@ SweepOutcome run_sweep_mpi(const SweepSpec& spec, const SweepOptions& options,
   const MpiSession session;
   const auto access = options.resume ? SweepStore::Access::resume : SweepStore::Access::create;
   std::vector<std::size_t> pending;
-  on_rank_zero(session, [&] { pending = SweepStore(spec, options.output, access).pending(); });
+  // Rank 0 keeps the store it opened, and with it the parts' lock, until the sweep ends: no other
+  // sweep starts into them meanwhile.
+  std::optional<SweepStore> opened;
+  on_rank_zero(session, [&] { pending = opened.emplace(spec, options.output, access).pending(); });
   pending = broadcast(std::move(pending));
   const SweepStore store(spec, options.output, SweepStore::Access::join);
   // Every rank must see the store rank 0 opened, or its runs would be written where the merge
   // never looks.
-  fail_together(session, store.visible() ? std::string()
-                                         : "cannot see " + options.output +
-                                               ".parts/, which rank 0 created: the output must "
-                                               "be on a file system every rank shares");
+  fail_together(session, !store.visible()
+                             ? "cannot see " + options.output +
+                                   ".parts/, which rank 0 created: the output must be on a file "
+                                   "system every rank shares"
+                         : !store.writing() ? "cannot lock " + options.output +
+                                                  ".parts/ for writing: another "
+                                                  "sweep is opening it"
+                                            : std::string());
   SweepOutcome outcome;
   outcome.runs = spec.runs.size();
   outcome.resumed = outcome.runs - pending.size();

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # A sweep killed with SIGKILL midway and resumed gives the same file as one never interrupted
 # (issue 11). Also: without --resume an interrupted sweep is not overwritten, no output file
-# exists until the sweep is complete, and under a launcher the ranks' file equals one process'.
+# exists until the sweep is complete, a --resume beside a sweep that still runs is refused, and
+# under a launcher the ranks' file equals one process'.
 # Usage: test_sweep_resume.sh TCPMSIM_BINARY SOURCE_DIR [LAUNCHER...]
 #   LAUNCHER: e.g. "mpirun -n 2" (then the sweep runs under it instead of on two threads)
 set -uo pipefail
@@ -41,15 +42,21 @@ kill_session() {
   fail "processes of the killed sweep survive: $(session_members "$1")"
 }
 
+# Waits until the parts directory `$1` holds `$2` runs (at most 30 s).
+wait_for_parts() {
+  local count
+  for _ in $(seq 1 3000); do
+    count=$(find "$1" -name 'run_*.h5' 2>/dev/null | wc -l)
+    ((count >= $2)) && return 0
+    sleep 0.01
+  done
+}
+
 "${launcher[@]}" "$tcpmsim" sweep "$sweep" "${jobs[@]}" -q -o "$work/whole.h5" || fail "the uninterrupted sweep"
 
 setsid "${launcher[@]}" "$tcpmsim" sweep "$sweep" "${jobs[@]}" -q -o "$work/killed.h5" &
 pid=$!
-for _ in $(seq 1 3000); do  # until a few runs are stored (at most 30 s)
-  count=$(find "$work/killed.h5.parts" -name 'run_*.h5' 2>/dev/null | wc -l)
-  ((count >= 4)) && break
-  sleep 0.01
-done
+wait_for_parts "$work/killed.h5.parts" 4
 kill_session "$pid"
 { wait "$pid"; } 2>/dev/null
 [[ -e $work/killed.h5 ]] && fail "the sweep finished before it was killed (make it longer)"
@@ -67,6 +74,19 @@ grep -q "($done_runs done before the resume)" "$work/out" ||
 [[ -e $work/killed.h5.parts ]] && fail "the parts were not removed after the merge"
 $python "$source_dir/tools/compare_sweeps.py" "$work/whole.h5" "$work/killed.h5" || fail "the resumed sweep differs"
 echo "ok: the resumed sweep equals the uninterrupted one"
+
+# A sweep that still runs keeps every other out of its parts: a --resume beside it (which would
+# redo its runs and collide with its writes) is refused, and it ends as if alone.
+"${launcher[@]}" "$tcpmsim" sweep "$sweep" "${jobs[@]}" -q -o "$work/live.h5" &
+pid=$!
+wait_for_parts "$work/live.h5.parts" 2
+"$tcpmsim" sweep "$sweep" --resume -q -o "$work/live.h5" 2>"$work/err" &&
+  fail "a --resume beside a running sweep ran$([[ -e $work/live.h5 ]] && echo ': the first had ended (make it longer)')"
+grep -qF "another sweep is writing into $work/live.h5.parts now" "$work/err" ||
+  fail "the refusal beside a running sweep: $(cat "$work/err")"
+wait "$pid" || fail "the running sweep failed beside the refused one"
+$python "$source_dir/tools/compare_sweeps.py" "$work/whole.h5" "$work/live.h5" || fail "the running sweep differs"
+echo "ok: a --resume beside a running sweep is refused, and the sweep ends as if alone"
 
 if ((${#launcher[@]} > 0)); then  # and the ranks' file equals one process' on threads
   "$tcpmsim" sweep "$sweep" --jobs 2 -q -o "$work/threads.h5" || fail "the sweep on threads"
