@@ -36,7 +36,8 @@ class DataSignal final : public Signal {
   double covered_until() const;
 
  private:
-  // The index of the last sample at or before scenario time `time`, or -1.
+  // The index of the last sample at or before scenario time `time`, or -1: the sample a uniform
+  // rate puts there, corrected by a few steps; a binary search where that does not find it.
   long sample_at(double time) const;
 
   std::shared_ptr<const Samples> samples_;
@@ -44,6 +45,7 @@ class DataSignal final : public Signal {
   // The samples where the value (hold) or the slope (linear) jumps: a sample that continues
   // the line or level before it is no breakpoint, so a long constant stretch costs no restarts.
   std::vector<double> breakpoints_;
+  double samples_per_second_ = 0.0;  // (n - 1) / (last time - first time): the mean rate
   DataInterpolation interpolation_;
   double origin_;
 };

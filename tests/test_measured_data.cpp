@@ -9,7 +9,9 @@
 
 #include <H5Cpp.h>
 
+#include "signals/data_signal.h"
 #include "sim/io/measured_data.h"
+#include "sim/random_stream.h"
 #include "sim/run.h"
 #include "tests/support/test_support.h"
 
@@ -214,6 +216,45 @@ TEST_CASE("Linear replay joins the samples as a piecewise-linear signal of the s
       shared_units()));
   CHECK(bitwise_equal(shifted["drive/power"], replayed["drive/power"]));
   CHECK(bitwise_equal(shifted["muscle/temperature"], replayed["muscle/temperature"]));
+}
+
+TEST_CASE("A data signal finds the sample at any time, whether the rate is even or not") {
+  // 16 Hz with jitter, a gap of seven missing samples, then a burst at 1 kHz: the sample the
+  // mean rate points at is often not the one, and the signal must still use the last sample at
+  // or before the time asked (as a search of every sample does), held or joined by lines.
+  RandomStream stream(3, "irregular samples");
+  auto samples = std::make_shared<DataSignal::Samples>();
+  double time = 2.0;
+  for (int k = 0; k < 400; ++k) {
+    samples->times.push_back(time);
+    samples->values.push_back(stream.uniform(-1.0, 1.0));
+    time += k == 200 ? 8.0 / 16.0 : k > 300 ? 1e-3 : (1.0 + stream.uniform(-0.3, 0.3)) / 16.0;
+  }
+  std::vector<double> asked = {0.0, 1.999, samples->times.back() + 1.0};
+  for (const double at : samples->times) {
+    asked.insert(asked.end(), {at, std::nextafter(at, 0.0), std::nextafter(at, 1e9), at + 1e-4});
+  }
+  for (int k = 0; k < 2000; ++k) asked.push_back(stream.uniform(1.5, time + 0.5));
+  const auto& t = samples->times;
+  const auto& v = samples->values;
+  for (const auto interpolation : {DataInterpolation::hold, DataInterpolation::linear}) {
+    const DataSignal signal(samples, interpolation, 0.0);
+    for (const double at : asked) {
+      long last = -1;  // the last sample at or before `at`, by looking at every one
+      for (std::size_t k = 0; k < t.size(); ++k)
+        if (t[k] <= at) last = static_cast<long>(k);
+      double expected = last < 0 ? v.front() : v[static_cast<std::size_t>(last)];
+      double slope = 0.0;
+      const auto k = static_cast<std::size_t>(last);
+      if (interpolation == DataInterpolation::linear && last >= 0 && k + 1 < t.size()) {
+        expected = v[k] + (at - t[k]) / (t[k + 1] - t[k]) * (v[k + 1] - v[k]);
+        slope = (v[k + 1] - v[k]) / (t[k + 1] - t[k]);
+      }
+      INFO("t = " << at << ", last sample " << last);
+      CHECK(signal.value(at) == expected);
+      CHECK(signal.slope(at) == slope);
+    }
+  }
 }
 
 TEST_CASE("A data signal's file, channel and coverage are checked at the scenario's keys") {
