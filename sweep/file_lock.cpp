@@ -24,7 +24,13 @@ FileLock::FileLock(const std::string& path, Mode mode) {
 }
 
 FileLock::~FileLock() {
+  release();
+}
+
+void FileLock::release() {
   if (descriptor_ >= 0) ::close(descriptor_);  // releases the lock
+  descriptor_ = -1;
+  taken_ = false;
 }
 
 FileLock::FileLock(FileLock&& other) noexcept
@@ -33,7 +39,7 @@ FileLock::FileLock(FileLock&& other) noexcept
 
 FileLock& FileLock::operator=(FileLock&& other) noexcept {
   if (this != &other) {
-    if (descriptor_ >= 0) ::close(descriptor_);
+    release();
     descriptor_ = std::exchange(other.descriptor_, -1);
     taken_ = std::exchange(other.taken_, false);
   }

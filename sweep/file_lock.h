@@ -23,6 +23,8 @@ class FileLock {
 
   // False if another holder's lock on the file conflicted with this one.
   bool taken() const { return taken_; }
+  // Lets go of the lock and closes the file (also done by the destructor).
+  void release();
 
  private:
   int descriptor_ = -1;

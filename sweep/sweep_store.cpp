@@ -216,8 +216,14 @@ std::size_t SweepStore::merge(const std::string& invocation) const {
   output.commit();
   // The runs first, the identity last: a merge killed here leaves parts a resume still takes.
   for (std::size_t id = 0; id < runs; ++id) std::filesystem::remove(part_path(id));
+  finish_writing();
+  owner_lock_.release();
   std::filesystem::remove_all(parts_);
   return failed;
+}
+
+void SweepStore::finish_writing() const {
+  writer_lock_.release();
 }
 
 }  // namespace tcpmsim::sweep

@@ -47,8 +47,12 @@ class SweepStore {
   // Safe to call from several threads at once: each run has its own file (and HDF5 calls take
   // turns, sim/io/hdf5_files.h).
   void write(const RunResult& result) const;
-  // Writes the output file from the parts (all runs must be done) and removes them. Returns the
-  // number of failed runs.
+  // Lets go of this process's lock on the parts once it writes no more runs: under MPI every
+  // rank does so before rank 0 merges, since a file still open keeps an NFS directory (or one
+  // its client shares with the merging rank) from being removed.
+  void finish_writing() const;
+  // Writes the output file from the parts (all runs must be done), lets go of the locks and
+  // removes the parts. Returns the number of failed runs.
   // `invocation`: the command line, written into the summary.
   std::size_t merge(const std::string& invocation = "") const;
 
@@ -61,8 +65,9 @@ class SweepStore {
   const SweepSpec& spec_;
   std::string output_;
   std::string parts_;
-  FileLock owner_lock_;
-  FileLock writer_lock_;
+  // Mutable: merge and finish_writing let go of them on a store that is otherwise read-only.
+  mutable FileLock owner_lock_;
+  mutable FileLock writer_lock_;
 };
 
 // The text that identifies a sweep: its file and every scenario as read (not where the file

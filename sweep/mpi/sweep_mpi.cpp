@@ -148,11 +148,13 @@ SweepOutcome run_sweep_mpi(const SweepSpec& spec, const SweepOptions& options,
   const auto access = options.resume ? SweepStore::Access::resume : SweepStore::Access::create;
   std::vector<std::size_t> pending;
   // Rank 0 keeps the store it opened, and with it the parts' lock, until the sweep ends: no other
-  // sweep starts into them meanwhile.
+  // sweep starts into them meanwhile. The other ranks join it.
   std::optional<SweepStore> opened;
   on_rank_zero(session, [&] { pending = opened.emplace(spec, options.output, access).pending(); });
   pending = broadcast(std::move(pending));
-  const SweepStore store(spec, options.output, SweepStore::Access::join);
+  std::optional<SweepStore> joined;
+  if (!opened) joined.emplace(spec, options.output, SweepStore::Access::join);
+  const SweepStore& store = opened ? *opened : *joined;
   // Every rank must see the store rank 0 opened, or its runs would be written where the merge
   // never looks.
   fail_together(session, !store.visible()
@@ -184,6 +186,8 @@ SweepOutcome run_sweep_mpi(const SweepSpec& spec, const SweepOptions& options,
       local_problem = error.what();
     }
   }
+  // Every rank lets go of the parts before rank 0 merges and removes them.
+  store.finish_writing();
   // A rank that failed to store a run fails the sweep everywhere; its runs are redone on resume.
   int failed_here = local_problem.empty() ? 0 : 1, failed_anywhere = 0;
   MPI_Allreduce(&failed_here, &failed_anywhere, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
