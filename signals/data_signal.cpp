@@ -1,6 +1,7 @@
 #include "signals/data_signal.h"
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <stdexcept>
 
@@ -77,7 +78,7 @@ long DataSignal::sample_at(double time) const {
   const std::size_t n = times_.size();
   if (time >= times_.back()) return static_cast<long>(n) - 1;
   if (time < times_.front()) return -1;
-  if (time >= times_.front()) {  // not NaN
+  if (!std::isnan(time)) {
     const double position = (time - times_.front()) * samples_per_second_;
     std::size_t at = std::min(static_cast<std::size_t>(position), n - 2);
     // Here times_[0] <= time < times_[n - 1]: the sample sought has 0 <= at <= n - 2.
