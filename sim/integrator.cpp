@@ -710,7 +710,8 @@ void Integrator::start_sensitivities(bool first) {
   std::vector<double> scales = cv.sensitivities->scales();
   check(CVodeSetSensParams(cv.memory, nullptr, scales.data(), nullptr), "CVodeSetSensParams");
   check(CVodeSensEEtolerances(cv.memory), "CVodeSensEEtolerances");
-  check(CVodeSetSensErrCon(cv.memory, SUNTRUE), "CVodeSetSensErrCon");
+  check(CVodeSetSensErrCon(cv.memory, settings_.sensitivity_error_control ? SUNTRUE : SUNFALSE),
+        "CVodeSetSensErrCon");
 }
 
 void Integrator::record_sensitivities(double when, const double* state) {

@@ -111,7 +111,7 @@ SolverSettings read_solver(const ConfigNode& root, const System& system) {
     return settings;
   }
   solver->declare({"method", "rtol", "atol", "linear_solver", "restart", "max_step", "initial_step",
-                   "max_steps"});
+                   "max_steps", "sensitivity_error_control"});
   settings.method = solver->choice_or("method", {"bdf", "adams"}, "bdf") == "adams"
                         ? IntegrationMethod::adams
                         : IntegrationMethod::bdf;
@@ -127,6 +127,8 @@ SolverSettings read_solver(const ConfigNode& root, const System& system) {
   settings.max_step = solver->quantity_or("max_step", "s", 0.0, ValueCheck::non_negative());
   settings.initial_step = solver->quantity_or("initial_step", "s", 0.0, ValueCheck::non_negative());
   settings.max_steps = solver->integer_or("max_steps", settings.max_steps, ValueCheck::at_least(1));
+  settings.sensitivity_error_control =
+      solver->boolean_or("sensitivity_error_control", settings.sensitivity_error_control);
   read_absolute_tolerances(*solver, system, settings);
   return settings;
 }
