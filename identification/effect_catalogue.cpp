@@ -338,7 +338,8 @@ std::vector<std::string> effect_names() {
   std::vector<CandidateDeclaration> storage;
   std::vector<std::string> names;
   for (const auto& declared : declared_families(standard_kinds(), storage))
-    names.push_back(declared.family->name);
+    if (std::find(names.begin(), names.end(), declared.family->name) == names.end())
+      names.push_back(declared.family->name);  // a family two kinds declare is named once
   return names;
 }
 
@@ -353,7 +354,9 @@ Candidates effect_candidates(const Scenario& scenario, const Context& fitted,
     for (const CandidateNeed need : family.needs)
       if (missing.empty()) missing = missing_need(base, scenario, need);
     if (!missing.empty()) {
-      result.skipped.push_back({family.name, missing});
+      const bool named = std::any_of(result.skipped.begin(), result.skipped.end(),
+                                     [&](const auto& skip) { return skip.name == family.name; });
+      if (!named) result.skipped.push_back({family.name, missing});  // once per family
       continue;
     }
     for (const auto& member : family.members)

@@ -269,12 +269,13 @@ TEST_CASE("Effects are checked against the muscle they attach to") {
                                   "reference_difference: 50 K}]\n",
                                   load)),
       Catch::Contains("free convection needs the muscle's temperature"));
-  CHECK_THAT(config_error(passive_muscle("  effects: [{type: maxwell_brunch}]\n", load)),
-             Catch::Contains(
-                 "muscle.effects[0].type: expected one of maxwell_branch, free_convection, "
-                 "thermal_softening, hysteresis, nonlinear_stiffness, thermal_lag, "
-                 "heating_lag, ratchet, heating_convection, got 'maxwell_brunch' (did you mean "
-                 "'maxwell_branch'?)"));
+  CHECK_THAT(
+      config_error(passive_muscle("  effects: [{type: maxwell_brunch}]\n", load)),
+      Catch::Contains(
+          "muscle.effects[0].type: expected one of maxwell_branch, free_convection, "
+          "thermal_softening, hysteresis, nonlinear_stiffness, thermal_lag, "
+          "heating_lag, heat_sink, ratchet, heating_convection, got 'maxwell_brunch' (did you mean "
+          "'maxwell_branch'?)"));
   CHECK_THAT(config_error(passive_muscle(
                  "  effects: [{type: maxwell_branch, stiffness: 1 N/m, damping: 1 N*s/m}, "
                  "{type: maxwell_branch, stiffness: 2 N/m, damping: 1 N*s/m}]\n",

@@ -1,4 +1,4 @@
-// The effect terms the discovery workflow attaches (thermal_lag, hysteresis,
+// The effect terms the discovery workflow attaches (thermal_lag, heat_sink, hysteresis,
 // nonlinear_stiffness), each against its analytic solution.
 #include <catch2/catch.hpp>
 
@@ -17,15 +17,12 @@ namespace {
 constexpr double kAmbient = 293.15, kCapacity = 0.5, kConductance = 0.05;  // the test muscle
 constexpr double kWireCapacity = 0.05, kWireConductance = 0.02;            // J/K, W/K
 
-// The two-node network after a power step P at t_s, both nodes at ambient before it:
-//   C dT/dt = G_w (T_w - T) - hA (T - T_amb),   C_w dT_w/dt = P - G_w (T_w - T),
-// solved through the eigenvectors of its (real, distinct) eigenvalues.
-double two_node_temperature(double t, double step_time, double power) {
+// The rise above ambient of a linear network of two nodes, dy/dt = A y + f, after a step of
+// the forcing f at t_s, both nodes at ambient before it; solved through the eigenvectors of
+// A's (real, distinct) eigenvalues. Returns the first node's temperature.
+double step_response(const Eigen::Matrix2d& a, const Eigen::Vector2d& forcing, double t,
+                     double step_time) {
   if (t <= step_time) return kAmbient;
-  Eigen::Matrix2d a;
-  a << -(kWireConductance + kConductance) / kCapacity, kWireConductance / kCapacity,
-      kWireConductance / kWireCapacity, -kWireConductance / kWireCapacity;
-  const Eigen::Vector2d forcing(0.0, power / kWireCapacity);
   const Eigen::Vector2d steady = -a.inverse() * forcing;  // rises above ambient
   const Eigen::EigenSolver<Eigen::Matrix2d> solver(a);
   const Eigen::Matrix2d vectors = solver.eigenvectors().real();
@@ -35,6 +32,15 @@ double two_node_temperature(double t, double step_time, double power) {
   for (int k = 0; k < 2; ++k)
     rise += weights(k) * std::exp(values(k) * (t - step_time)) * vectors.col(k);
   return kAmbient + rise(0);
+}
+
+// The wire before the polymer after a power step P:
+//   C dT/dt = G_w (T_w - T) - hA (T - T_amb),   C_w dT_w/dt = P - G_w (T_w - T).
+double two_node_temperature(double t, double step_time, double power) {
+  Eigen::Matrix2d a;
+  a << -(kWireConductance + kConductance) / kCapacity, kWireConductance / kCapacity,
+      kWireConductance / kWireCapacity, -kWireConductance / kWireCapacity;
+  return step_response(a, Eigen::Vector2d(0.0, power / kWireCapacity), t, step_time);
 }
 
 const std::string kWire =
@@ -164,6 +170,37 @@ TEST_CASE("A heating lag delays a share of the power by a first-order lag") {
   CHECK(worst <= allowed(1e-8, 30.0) + 50.0 * 1e-6);
 }
 
+TEST_CASE("A heat sink beside the polymer follows the two-node network's analytic response") {
+  // A body of time constant tau_s = C_s / G_s beside the polymer, after a power step P:
+  //   C dT/dt = P - hA (T - T_amb) - G_s (T - T_s),   tau_s dT_s/dt = T - T_s.
+  const double conductance = 0.03, tau = 15.0, power = 1.5;
+  Eigen::Matrix2d a;
+  a << -(conductance + kConductance) / kCapacity, conductance / kCapacity, 1.0 / tau, -1.0 / tau;
+  const Eigen::Vector2d forcing(power / kCapacity, 0.0);
+  for (const std::string given : {"time_constant: 15 s", "heat_capacity: 0.45 J/K"}) {
+    const Trace trace = simulate(
+        physical_muscle_yaml(),
+        {kPowerStep,
+         "muscle.effects=[{type: heat_sink, name: clamp, conductance: 0.03 W/K, " + given + "}]"});
+    double worst = 0.0;
+    for (std::size_t i = 0; i < trace.time.size(); ++i)
+      worst = std::max(worst, std::abs(trace["muscle/temperature"][i] -
+                                       step_response(a, forcing, trace.time[i], 10.0)));
+    INFO(given << ": worst error " << worst << " K");
+    CHECK(worst <= allowed(1e-8, 30.0) + 50.0 * 1e-6);
+  }
+  // It slows the rise, yet the steady state is the single node's, T_amb + P/hA: the body has
+  // caught up and takes nothing.
+  const Trace bare = simulate(physical_muscle_yaml(), {kPowerStep});
+  const Trace sunk = simulate(
+      physical_muscle_yaml(),
+      {kPowerStep, "scenario.duration=600 s",
+       "muscle.effects=[{type: heat_sink, name: clamp, conductance: 0.03 W/K, time_constant: "
+       "15 s}]"});
+  CHECK(sunk["muscle/temperature"][150] < bare["muscle/temperature"][150] - 1.0);  // at 15 s
+  CHECK(sunk["muscle/temperature"].back() == Approx(kAmbient + power / kConductance).epsilon(1e-7));
+}
+
 TEST_CASE("An effect at zero size leaves the muscle as it was (discover's nested start)") {
   // The forces of the muscle under a deflection triangle and a power step: every effect that
   // discover's candidates start at zero size carries exactly nothing there. Its extra states
@@ -181,8 +218,11 @@ TEST_CASE("An effect at zero size leaves the muscle as it was (discover's nested
         "{type: thermal_softening, name: s, reference_stiffness: 0 N/m, "
         "temperature_coefficient: 0.01 1/K, reference_temperature: 20 degC}",
         "{type: heating_lag, name: l, share: 0, time_constant: 3 s}",
+        "{type: heat_sink, name: k, conductance: 0 W/K, time_constant: 10 s}",
         "{type: ratchet, name: r, rate: 0 N/(K*s), threshold: 25 degC}",
-        "{type: heating_convection, name: f, conductance: 0 W/K, reference_power: 1.5 W}"}) {
+        "{type: heating_convection, name: f, conductance: 0 W/K, reference_power: 1.5 W}",
+        "{type: heating_convection, name: g, conductance: 0 W/K, switch_power: 1 W, "
+        "switch_width: 0.2 W, time_constant: 2 s}"}) {
     auto with = overrides;
     with.push_back("muscle.effects=[" + effect + "]");
     const Trace trace = simulate(physical_muscle_yaml(), with);
@@ -339,4 +379,31 @@ TEST_CASE("A heating-driven convection raises hA by G_P P / P_ref while the heat
         Approx(trace["muscle/temperature"].back()).epsilon(1e-6));
   const std::size_t spinning = 200;  // 20 s at 10 Hz: 10 s after the step
   CHECK(lagged["muscle/temperature"][spinning] > trace["muscle/temperature"][spinning] + 0.05);
+}
+
+TEST_CASE("A fan switched on above a power raises hA by G_P s(P), s a smooth switch at P_on") {
+  // Steady states of one node under two powers, one below the switch and one above it:
+  // T - T_amb = P / (hA + G_P s(P)), s(P) = 1 / (1 + exp(-(P - P_on) / w)).
+  const double gain = 0.04, on = 1.6, width = 0.15;
+  const Trace trace = simulate(
+      physical_muscle_yaml(),
+      {"drive.power={type: steps, initial: 0 W, times: [10 s, 400 s], values: [1 W, 2.5 W]}",
+       "scenario.duration=800 s",
+       "muscle.effects=[{type: heating_convection, name: fan, conductance: 0.04 W/K, "
+       "switch_power: 1.6 W, switch_width: 0.15 W}]"});
+  const auto steady = [&](double power) {
+    const double switched = 1.0 / (1.0 + std::exp(-(power - on) / width));
+    return power / (kConductance + gain * switched);
+  };
+  CHECK(trace["muscle/temperature"][3990] - kAmbient == Approx(steady(1.0)).epsilon(1e-6));
+  CHECK(trace["muscle/temperature"].back() - kAmbient == Approx(steady(2.5)).epsilon(1e-6));
+  // Below the switch the fan barely runs (s = 0.018), above it nearly fully (s = 0.998).
+  CHECK(steady(1.0) > 0.98 * 1.0 / kConductance);
+  CHECK(steady(2.5) < 2.5 / (kConductance + 0.99 * gain));
+  CHECK_THAT(config_error(physical_muscle_yaml(),
+                          {"muscle.effects=[{type: heating_convection, name: fan, conductance: "
+                           "0.04 W/K, reference_power: 3 W, switch_power: 1.6 W, switch_width: "
+                           "0.15 W}]"}),
+             Catch::Contains("give reference_power (a boost proportional to the power) or "
+                             "switch_power and switch_width"));
 }

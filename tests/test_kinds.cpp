@@ -229,6 +229,6 @@ load: {type: force, force: 0.4 N}
       Catch::Contains(
           "muscle.effects[0].type: expected one of maxwell_branch, "
           "free_convection, thermal_softening, hysteresis, nonlinear_stiffness, thermal_lag, "
-          "heating_lag, ratchet, heating_convection, "
+          "heating_lag, heat_sink, ratchet, heating_convection, "
           "got 'parallel_spring'"));
 }

@@ -2,6 +2,7 @@
 
 #include "models/effects/effect_candidates.h"
 #include "models/effects/free_convection.h"
+#include "models/effects/heat_sink.h"
 #include "models/effects/heating_convection.h"
 #include "models/effects/heating_lag.h"
 #include "models/effects/hysteresis.h"
@@ -142,6 +143,15 @@ void attach_heating_lag(const ConfigNode& section, const MuscleAttachment& muscl
   system.connect(muscle.muscle + ".heat_loss", muscle.group + ".heat_loss");
 }
 
+void attach_heat_sink(const ConfigNode& section, const MuscleAttachment& muscle,
+                      ScenarioBuilder& build) {
+  require_heat_terms(section, muscle, "a heat sink");
+  SystemBuilder& system = build.system();
+  auto& sink = system.add(HeatSink::from_config(muscle.group, section));
+  system.connect(sink, "temperature", muscle.muscle + ".temperature");
+  system.connect(muscle.muscle + ".heat_loss", muscle.group + ".heat_loss");
+}
+
 void attach_ratchet(const ConfigNode& section, const MuscleAttachment& muscle,
                     ScenarioBuilder& build) {
   require_temperature(section, muscle, "a ratchet is driven by");
@@ -279,17 +289,32 @@ CandidateDeclaration free_convection_candidates() {
        free_key("exponent", "1", fixed_value(1.25), fixed_value(1.0), fixed_value(2.0))});
 }
 
+// A second thermal node, before the polymer (heating_lag) or beside it (heat_sink): one family
+// declared by two kinds, its members tried side by side.
+CandidateFamily thermal_lag_family() {
+  return {"thermal_lag",
+          3,
+          "a second thermal node: the heat reaches the polymer late (heater wire, coating) or a "
+          "body it touches stores some (clamp, holder)",
+          "residual cross-correlated with power at short lags",
+          {CandidateNeed::temperature},
+          {}};
+}
+
 CandidateDeclaration heating_lag_candidates() {
   return one_form(
-      {"thermal_lag",
-       3,
-       "the heat reaches the polymer late (heater wire, coating)",
-       "residual cross-correlated with power at short lags",
-       {CandidateNeed::temperature},
-       {}},
-      "a share of the power through a first-order lag",
+      thermal_lag_family(), "a share of the power through a first-order lag",
       {free_key("share", "1", fixed_value(0.0), fixed_value(0.0), fixed_value(1.0)),
        free_key("time_constant", "s", fixed_value(2.0), fixed_value(0.1), fixed_value(30.0))});
+}
+
+CandidateDeclaration heat_sink_candidates() {
+  // A body of time constant 1-100 s that takes up to 5 hA from the polymer while it lags.
+  return one_form(
+      thermal_lag_family(), "a heat sink beside the polymer, G_s (T - T_s)",
+      {free_key("conductance", "W/K", fixed_value(0.0), fixed_value(0.0),
+                scaled(5.0, S::conductance)),
+       free_key("time_constant", "s", fixed_value(10.0), fixed_value(1.0), fixed_value(100.0))});
 }
 
 CandidateDeclaration nonlinear_stiffness_candidates() {
@@ -353,24 +378,43 @@ CandidateDeclaration ratchet_candidates() {
 }
 
 CandidateDeclaration heating_convection_candidates() {
-  return one_form(
-      {"heating_dependent_convection",
-       9,
-       "the heat-transfer coefficient rises while the heating runs (a fan or heat gun)",
-       "residual against power times the temperature rise",
-       {CandidateNeed::temperature, CandidateNeed::power},
-       {}},
-      "Q = G_P (P_b / P_peak) (T - T_amb), P_b lagging P",
-      {free_key("conductance", "W/K", fixed_value(0.0), fixed_value(0.0),
-                scaled(3.0, S::conductance)),
-       fixed_key("reference_power", "W", scaled(1.0, S::power_peak)),
-       free_key("time_constant", "s", fixed_value(1.0), fixed_value(0.05), fixed_value(60.0))});
+  CandidateFamily family{
+      "heating_dependent_convection",
+      9,
+      "the heat-transfer coefficient rises while the heating runs (a fan or heat gun)",
+      "residual against power times the temperature rise",
+      {CandidateNeed::temperature, CandidateNeed::power},
+      {}};
+  const CandidateKey conductance = free_key("conductance", "W/K", fixed_value(0.0),
+                                            fixed_value(0.0), scaled(3.0, S::conductance));
+  const CandidateKey lag =
+      free_key("time_constant", "s", fixed_value(1.0), fixed_value(0.05), fixed_value(60.0));
+  family.members.push_back(
+      {"Q = G_P (P_b / P_peak) (T - T_amb), P_b lagging P",
+       1,
+       {{conductance, fixed_key("reference_power", "W", scaled(1.0, S::power_peak)), lag}},
+       {},
+       {}});
+  // A fan switched on above a power (a relay): the switch's place and width within the
+  // measured power's range.
+  family.members.push_back({"Q = G_P s(P_b) (T - T_amb), a switch at a free power",
+                            2,
+                            {{conductance,
+                              free_key("switch_power", "W", scaled(0.5, S::power_peak),
+                                       scaled(0.05, S::power_peak), scaled(0.95, S::power_peak)),
+                              free_key("switch_width", "W", scaled(0.1, S::power_peak),
+                                       scaled(0.02, S::power_peak), scaled(0.5, S::power_peak)),
+                              lag}},
+                            {},
+                            {}});
+  return {{family}, ""};
 }
 
 CandidateDeclaration thermal_lag_exclusion() {
   return {{},
-          "its family, thermal_lag, is tried as heating_lag: a wire node's capacity cannot reach "
-          "zero (the base model) without a stiff limit, a lagged share of the power can"};
+          "its family, thermal_lag, is tried as heating_lag and heat_sink: a wire node's capacity "
+          "cannot reach zero (the base model) without a stiff limit, a lagged share of the power "
+          "can"};
 }
 
 }  // namespace
@@ -471,6 +515,21 @@ void register_effect_kinds(KindRegistry& kinds) {
              EffectBuilder(attach_heating_lag),
              heating_lag_candidates()});
   kinds.add({kEffectCategory,
+             "heat_sink",
+             "a body beside the polymer that stores heat (a clamp, a holder): tau_s dT_s/dt = "
+             "T - T_s, the polymer losing G_s (T - T_s) to it; give time_constant tau_s or "
+             "heat_capacity C_s = G_s tau_s",
+             {{example_muscle_scenario("  effects:\n    - {type: heat_sink, name: clamp, "
+                                       "conductance: 0.02 W/K, time_constant: 15 s}\n",
+                                       ""),
+               "muscle.effects[0]"},
+              {example_muscle_scenario("  effects:\n    - {type: heat_sink, name: clamp, "
+                                       "conductance: 0.02 W/K, heat_capacity: 0.3 J/K}\n",
+                                       ""),
+               "muscle.effects[0]"}},
+             EffectBuilder(attach_heat_sink),
+             heat_sink_candidates()});
+  kinds.add({kEffectCategory,
              "ratchet",
              "an irreversible loss of force as the rest length creeps above a threshold "
              "temperature: dF_r/dt = -g max(0, T - T_th), kept when the muscle cools",
@@ -483,10 +542,16 @@ void register_effect_kinds(KindRegistry& kinds) {
   kinds.add({kEffectCategory,
              "heating_convection",
              "a heat-transfer coefficient that rises with the heating input (a fan or heat "
-             "gun running with the heater): Q = G_P (P_b / P_ref) (T - T_amb), the boost P_b "
-             "following the input P with time constant tau (0: at once)",
+             "gun running with the heater): Q = G_P (P_b / P_ref) (T - T_amb), or switched on "
+             "above a power, Q = G_P s(P_b) (T - T_amb) with s(P) = 1 / (1 + exp(-(P - P_on) / "
+             "w)); the boost P_b following the input P with time constant tau (0: at once)",
              {{example_muscle_scenario("  effects:\n    - {type: heating_convection, name: fan, "
                                        "conductance: 0.02 W/K, reference_power: 3 W}\n",
+                                       ""),
+               "muscle.effects[0]"},
+              {example_muscle_scenario("  effects:\n    - {type: heating_convection, name: fan, "
+                                       "conductance: 0.02 W/K, switch_power: 1.6 W, "
+                                       "switch_width: 0.15 W, time_constant: 2 s}\n",
                                        ""),
                "muscle.effects[0]"}},
              EffectBuilder(attach_heating_convection),

@@ -11,13 +11,27 @@ HeatingConvection::HeatingConvection(std::string group, HeatingConvectionParamet
 std::unique_ptr<HeatingConvection> HeatingConvection::from_config(const std::string& group,
                                                                   const ConfigNode& node) {
   using P = HeatingConvectionParameters;
-  node.declare({"type", "name", "conductance", "reference_power", "time_constant"});
+  node.declare({"type", "name", "conductance", "reference_power", "time_constant", "switch_power",
+                "switch_width"});
   P p;
   ParameterBindings<P> bind;
   bind.quantity(node, "conductance", "W/K", typical::added_conductance(ValueCheck::non_negative()),
                 p, bind.member(&P::conductance));
-  bind.quantity(node, "reference_power", "W", ValueCheck::positive(), p,
-                bind.member(&P::reference_power));
+  const bool switched = node.has("switch_power") || node.has("switch_width");
+  if (switched && node.has("reference_power"))
+    node.at("reference_power")
+        .fail(
+            "give reference_power (a boost proportional to the power) or switch_power and "
+            "switch_width (a switched fan), not both");
+  if (switched) {
+    bind.quantity(node, "switch_power", "W", ValueCheck::non_negative(), p,
+                  bind.member(&P::switch_power));
+    bind.quantity(node, "switch_width", "W", ValueCheck::positive(), p,
+                  bind.member(&P::switch_width));
+  } else {
+    bind.quantity(node, "reference_power", "W", ValueCheck::positive(), p,
+                  bind.member(&P::reference_power));
+  }
   bind.quantity_or(node, "time_constant", "s", 0.0, ValueCheck::non_negative(), p,
                    bind.member(&P::time_constant));
   return std::make_unique<HeatingConvection>(group, p, std::move(bind));

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <memory>
 
 #include "sim/config/config_node.h"
@@ -11,18 +12,29 @@ namespace tcpmsim {
 // runs with the heater stirs the air around the muscle, so the loss grows with the input,
 //     Q = G_P (P / P_ref) (T - T_amb),
 // beside the node's own hA (T - T_amb): at P = P_ref the conductance is hA + G_P, at rest hA.
+// A fan switched by the heating (a relay, a thermostat) runs above a power P_on instead:
+//     Q = G_P s(P) (T - T_amb),   s(P) = 1 / (1 + exp(-(P - P_on) / w)),
+// a smooth switch of width w (given by switch_power and switch_width, not reference_power).
 // A flow that spins up and down follows the input late: with a time constant tau the boost is
 // driven by the lagged input P_b, tau dP_b/dt = P - P_b (P_b = P at the start; tau = 0: at
 // once). With G_P = 0 it takes nothing (discover's nested start).
 struct HeatingConvectionParameters {
-  double conductance = 0.0;      // G_P [W/K] at the reference power
-  double reference_power = 0.0;  // P_ref [W]
+  double conductance = 0.0;      // G_P [W/K] at the reference power, or switched fully on
+  double reference_power = 0.0;  // P_ref [W]; 0 when switched
   double time_constant = 0.0;    // tau [s]; 0: the boost follows the input at once
+  double switch_power = 0.0;     // P_on [W]
+  double switch_width = 0.0;     // w [W]; 0: proportional to P / P_ref
 };
 
 namespace heating_convection {
+// s(P): P / P_ref, or the switch's 1 / (1 + exp(-(P - P_on) / w)).
+inline double boost(const HeatingConvectionParameters& p, double power) {
+  if (p.switch_width > 0.0)
+    return 0.5 * (1.0 + std::tanh(0.5 * (power - p.switch_power) / p.switch_width));
+  return power / p.reference_power;
+}
 inline double heat_loss(const HeatingConvectionParameters& p, double power, double difference) {
-  return p.conductance * (power / p.reference_power) * difference;
+  return p.conductance * boost(p, power) * difference;
 }
 }  // namespace heating_convection
 
@@ -32,7 +44,8 @@ class HeatingConvection final : public ParametricComponent<HeatingConvectionPara
   enum Output { kHeatLoss };
   HeatingConvection(std::string group, HeatingConvectionParameters defaults,
                     ParameterBindings<HeatingConvectionParameters> bindings = {});
-  // Keys conductance, reference_power, time_constant (default 0).
+  // Keys conductance, and reference_power or switch_power and switch_width; time_constant
+  // (default 0).
   static std::unique_ptr<HeatingConvection> from_config(const std::string& group,
                                                         const ConfigNode& node);
 
