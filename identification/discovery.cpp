@@ -13,7 +13,7 @@
 #include "identification/discovery_setup.h"
 #include "kinds/standard_kinds.h"
 #include "sim/not_a_number.h"
-#include "sim/parallel_runs.h"
+#include "sim/parallel_rounds.h"
 #include "sim/value_check.h"
 
 namespace tcpmsim::fit {
@@ -263,7 +263,6 @@ CandidateOutcome fit_candidate(const DiscoverSetup& setup, const Baseline& basel
 // higher orders.
 struct FamilyMembers {
   std::vector<std::size_t> simplest, higher;
-  std::size_t parameters = 0;  // of all its members: the longest families are started first
 };
 
 std::vector<FamilyMembers> families_of(const std::vector<EffectCandidate>& tried) {
@@ -274,50 +273,90 @@ std::vector<FamilyMembers> families_of(const std::vector<EffectCandidate>& tried
     if (added) families.emplace_back();
     FamilyMembers& family = families[found->second];
     (tried[k].order == 1 ? family.simplest : family.higher).push_back(k);
-    family.parameters += tried[k].parameters.size();
   }
   return families;
 }
 
-// The catalogue's candidates refitted from `baseline` and scored against it, family by family
-// in parallel: each family's simplest members (order 1), then, on the same thread, its higher
-// orders only where a simplest member lowered the BIC by more than the threshold (forward
-// selection of the model order: a Prandtl-Ishlinskii operator is tried where one Dahl element
-// already explains something). A family's higher orders start as soon as its own simplest
-// members are scored, not once every family's are. Each fit runs on one thread. The outcomes
-// are the simplest members in the catalogue's order, then the higher orders tried.
+// A family's higher orders are tried only where one of its simplest members lowered the BIC by
+// at least this share of the largest drop of any simplest member: a family an order of
+// magnitude behind the best one is not where the effect is, and its higher orders (a switched
+// fan, four play operators) are the catalogue's dearest fits.
+constexpr double kHigherOrderShare = 0.1;
+
+// Candidates in the order to start them: the most parameters (the longest fits) first.
+std::vector<std::size_t> longest_first(std::vector<std::size_t> candidates,
+                                       const std::vector<EffectCandidate>& tried) {
+  std::stable_sort(candidates.begin(), candidates.end(), [&](std::size_t a, std::size_t b) {
+    return tried[a].parameters.size() > tried[b].parameters.size();
+  });
+  return candidates;
+}
+
+// The higher orders to try, longest first: those of the families where a simplest member among
+// the `finished` lowered the BIC by more than the threshold and by kHigherOrderShare of the
+// largest drop among them.
+std::vector<std::size_t> higher_orders_to_try(const std::vector<FamilyMembers>& families,
+                                              const std::vector<EffectCandidate>& tried,
+                                              const std::vector<CandidateOutcome>& fitted,
+                                              const std::vector<char>& finished,
+                                              double bic_threshold) {
+  const auto drop = [&](std::size_t k) {
+    return finished[k] && fitted[k].status == "fitted" ? -fitted[k].delta_bic : 0.0;
+  };
+  double largest = 0.0;
+  for (const auto& family : families)
+    for (const std::size_t k : family.simplest) largest = std::max(largest, drop(k));
+  std::vector<std::size_t> higher;
+  for (const auto& family : families) {
+    const bool evidence = std::any_of(family.simplest.begin(), family.simplest.end(), [&](auto k) {
+      return drop(k) > bic_threshold && drop(k) >= kHigherOrderShare * largest;
+    });
+    if (evidence) higher.insert(higher.end(), family.higher.begin(), family.higher.end());
+  }
+  return longest_first(std::move(higher), tried);
+}
+
+// The catalogue's candidates refitted from `baseline` and scored against it, each fit on one
+// thread: every family's simplest members (order 1), then the higher orders of the families
+// they gave evidence for (forward selection of the model order: a Prandtl-Ishlinskii operator
+// is tried where one Dahl element already explains something; higher_orders_to_try). A thread
+// that would idle at the end of the first round starts the higher orders the members finished
+// so far point to, and so does one as soon as the families that have higher orders have scored
+// their simplest members (run_two_rounds); what is tried and reported is the same on any
+// number of threads. The outcomes are the simplest members in the catalogue's order, then the
+// higher orders tried.
 std::vector<CandidateOutcome> fit_catalogue(const DiscoverSetup& setup, const Baseline& baseline,
                                             const std::vector<double>& noise,
                                             const std::vector<std::vector<double>>& measured,
                                             const std::vector<EffectCandidate>& tried,
                                             int& simulations) {
-  const std::vector<FamilyMembers> families = families_of(tried);
-  std::vector<std::size_t> order(families.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return families[a].parameters > families[b].parameters;
-  });
   std::vector<CandidateOutcome> fitted(tried.size());
-  std::vector<char> ran(tried.size(), 0);  // each written by its family's thread only
   const auto fit_and_score = [&](std::size_t k) {
     fitted[k] = fit_candidate(setup, baseline, noise, tried[k]);
     if (fitted[k].status == "fitted") score(fitted[k], baseline, noise, measured, setup);
-    ran[k] = 1;
   };
-  const std::vector<std::string> labels(families.size(), "candidate");
-  run_in_parallel(labels, setup.request.threads, [&](std::size_t f) {
-    const FamilyMembers& family = families[order[f]];
-    for (const std::size_t k : family.simplest) fit_and_score(k);
-    const bool evidence = std::any_of(family.simplest.begin(), family.simplest.end(), [&](auto k) {
-      return fitted[k].status == "fitted" && fitted[k].delta_bic < -setup.request.bic_threshold;
-    });
-    if (evidence)
-      for (const std::size_t k : family.higher) fit_and_score(k);
-  });
+  // The simplest members of families with higher orders lead: the higher orders they point to
+  // start as soon as they are scored, beside the other families' simplest members.
+  const std::vector<FamilyMembers> families = families_of(tried);
+  std::vector<std::size_t> leading, others;
+  for (const auto& family : families) {
+    auto& into = family.higher.empty() ? others : leading;
+    into.insert(into.end(), family.simplest.begin(), family.simplest.end());
+  }
+  std::vector<std::size_t> simplest = longest_first(leading, tried);
+  for (const std::size_t k : longest_first(others, tried)) simplest.push_back(k);
+  const auto higher_orders = [&](const std::vector<char>& finished) {
+    return higher_orders_to_try(families, tried, fitted, finished, setup.request.bic_threshold);
+  };
+  std::vector<char> reported(tried.size(), 0);
+  for (const std::size_t k : simplest) reported[k] = 1;
+  for (const std::size_t k : run_two_rounds(simplest, leading.size(), higher_orders, tried.size(),
+                                            setup.request.threads, fit_and_score))
+    reported[k] = 1;
   std::vector<CandidateOutcome> outcomes;
-  for (const bool simplest : {true, false}) {
+  for (const bool first_round : {true, false}) {
     for (std::size_t k = 0; k < tried.size(); ++k) {
-      if (!ran[k] || (tried[k].order == 1) != simplest) continue;
+      if (!reported[k] || (tried[k].order == 1) != first_round) continue;
       simulations += fitted[k].result.simulations;
       outcomes.push_back(std::move(fitted[k]));
     }
