@@ -45,12 +45,17 @@ void require_temperature(const ConfigNode& section, const MuscleAttachment& musc
   }
 }
 
+// A heat term's loss into the muscle's heat balance (its fan-in heat_loss).
+void connect_heat_loss(SystemBuilder& system, const MuscleAttachment& muscle) {
+  system.connect(muscle.muscle + ".heat_loss", muscle.group + ".heat_loss");
+}
+
 // A heat loss of the muscle's temperature over its ambient, into its heat balance.
 void connect_heat_term(SystemBuilder& system, const Component& term,
                        const MuscleAttachment& muscle) {
   system.connect(term, "temperature", muscle.muscle + ".temperature");
   system.connect(term, "ambient_temperature", muscle.muscle + ".ambient_temperature");
-  system.connect(muscle.muscle + ".heat_loss", muscle.group + ".heat_loss");
+  connect_heat_loss(system, muscle);
 }
 
 // A heat term depends on the muscle's temperature, which the reduced form reports only with
@@ -131,7 +136,7 @@ void attach_thermal_lag(const ConfigNode& section, const MuscleAttachment& muscl
   auto& lag = system.add(ThermalLag::from_config(muscle.group, section));
   system.share_input(muscle.muscle + ".power", lag, "power");
   system.connect(lag, "temperature", muscle.muscle + ".temperature");
-  system.connect(muscle.muscle + ".heat_loss", muscle.group + ".heat_loss");
+  connect_heat_loss(system, muscle);
 }
 
 void attach_heating_lag(const ConfigNode& section, const MuscleAttachment& muscle,
@@ -140,7 +145,7 @@ void attach_heating_lag(const ConfigNode& section, const MuscleAttachment& muscl
   SystemBuilder& system = build.system();
   auto& lag = system.add(HeatingLag::from_config(muscle.group, section));
   system.share_input(muscle.muscle + ".power", lag, "power");
-  system.connect(muscle.muscle + ".heat_loss", muscle.group + ".heat_loss");
+  connect_heat_loss(system, muscle);
 }
 
 void attach_heat_sink(const ConfigNode& section, const MuscleAttachment& muscle,
@@ -149,7 +154,7 @@ void attach_heat_sink(const ConfigNode& section, const MuscleAttachment& muscle,
   SystemBuilder& system = build.system();
   auto& sink = system.add(HeatSink::from_config(muscle.group, section));
   system.connect(sink, "temperature", muscle.muscle + ".temperature");
-  system.connect(muscle.muscle + ".heat_loss", muscle.group + ".heat_loss");
+  connect_heat_loss(system, muscle);
 }
 
 void attach_ratchet(const ConfigNode& section, const MuscleAttachment& muscle,
