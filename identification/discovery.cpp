@@ -6,11 +6,11 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <map>
 #include <numeric>
 
 #include "identification/candidate_aliases.h"
 #include "identification/discovery_setup.h"
+#include "identification/model_order.h"
 #include "kinds/standard_kinds.h"
 #include "sim/not_a_number.h"
 #include "sim/parallel_rounds.h"
@@ -257,63 +257,6 @@ CandidateOutcome fit_candidate(const DiscoverSetup& setup, const Baseline& basel
   outcome.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return outcome;
-}
-
-// One family's candidates (indices into the catalogue's list): its simplest members and its
-// higher orders.
-struct FamilyMembers {
-  std::vector<std::size_t> simplest, higher;
-};
-
-std::vector<FamilyMembers> families_of(const std::vector<EffectCandidate>& tried) {
-  std::vector<FamilyMembers> families;
-  std::map<std::string, std::size_t> index;
-  for (std::size_t k = 0; k < tried.size(); ++k) {
-    const auto [found, added] = index.try_emplace(tried[k].name, families.size());
-    if (added) families.emplace_back();
-    FamilyMembers& family = families[found->second];
-    (tried[k].order == 1 ? family.simplest : family.higher).push_back(k);
-  }
-  return families;
-}
-
-// A family's higher orders are tried only where one of its simplest members lowered the BIC by
-// at least this share of the largest drop of any simplest member: a family an order of
-// magnitude behind the best one is not where the effect is, and its higher orders (a switched
-// fan, four play operators) are the catalogue's dearest fits.
-constexpr double kHigherOrderShare = 0.1;
-
-// Candidates in the order to start them: the most parameters (the longest fits) first.
-std::vector<std::size_t> longest_first(std::vector<std::size_t> candidates,
-                                       const std::vector<EffectCandidate>& tried) {
-  std::stable_sort(candidates.begin(), candidates.end(), [&](std::size_t a, std::size_t b) {
-    return tried[a].parameters.size() > tried[b].parameters.size();
-  });
-  return candidates;
-}
-
-// The higher orders to try, longest first: those of the families where a simplest member among
-// the `finished` lowered the BIC by more than the threshold and by kHigherOrderShare of the
-// largest drop among them.
-std::vector<std::size_t> higher_orders_to_try(const std::vector<FamilyMembers>& families,
-                                              const std::vector<EffectCandidate>& tried,
-                                              const std::vector<CandidateOutcome>& fitted,
-                                              const std::vector<char>& finished,
-                                              double bic_threshold) {
-  const auto drop = [&](std::size_t k) {
-    return finished[k] && fitted[k].status == "fitted" ? -fitted[k].delta_bic : 0.0;
-  };
-  double largest = 0.0;
-  for (const auto& family : families)
-    for (const std::size_t k : family.simplest) largest = std::max(largest, drop(k));
-  std::vector<std::size_t> higher;
-  for (const auto& family : families) {
-    const bool evidence = std::any_of(family.simplest.begin(), family.simplest.end(), [&](auto k) {
-      return drop(k) > bic_threshold && drop(k) >= kHigherOrderShare * largest;
-    });
-    if (evidence) higher.insert(higher.end(), family.higher.begin(), family.higher.end());
-  }
-  return longest_first(std::move(higher), tried);
 }
 
 // The catalogue's candidates refitted from `baseline` and scored against it, each fit on one
