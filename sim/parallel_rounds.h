@@ -18,7 +18,10 @@ namespace tcpmsim {
 // simply not asked for; a task's result never depends on when it ran, so what is returned, and
 // every result in it, is the same on any number of threads.
 // A task that throws: the first such of `first` and the final second round, in id order, is
-// rethrown as a std::runtime_error once all threads are done.
+// rethrown as it was thrown, once all threads are done. `first` must hold distinct ids below
+// `task_count` (std::invalid_argument) and `second` must name none of them
+// (std::logic_error); an exception from `second` stops every thread from starting another task
+// and is rethrown once all are done.
 std::vector<std::size_t> run_two_rounds(
     const std::vector<std::size_t>& first, std::size_t lead,
     const std::function<std::vector<std::size_t>(const std::vector<char>& finished)>& second,

@@ -102,3 +102,60 @@ TEST_CASE("A task that throws is reported after all threads are done; a dropped 
         }));
   }
 }
+
+TEST_CASE("Whatever a task throws is rethrown as it was, once all threads are done") {
+  for (const int threads : {1, 2}) {
+    INFO(threads << " threads");
+    CHECK_THROWS_AS(
+        run_two_rounds(
+            {0, 1}, 0, [](const auto&) { return std::vector<std::size_t>{}; }, 2, threads,
+            [](std::size_t k) {
+              if (k == 1) throw 42;
+            }),
+        int);
+    CHECK_THROWS_AS(
+        run_two_rounds(
+            {0, 1}, 0, [](const auto&) { return std::vector<std::size_t>{}; }, 2, threads,
+            [](std::size_t k) {
+              if (k == 0) throw std::invalid_argument("");
+            }),
+        std::invalid_argument);
+  }
+}
+
+TEST_CASE("A second round that names a first-round task, or fails, stops every thread") {
+  for (const int threads : {1, 2}) {
+    INFO(threads << " threads");
+    std::atomic<int> runs = 0;
+    const auto count = [&](std::size_t) { ++runs; };
+    // Task 1 would run twice, and the first round would count as done before it is.
+    CHECK_THROWS_AS(run_two_rounds(
+                        {0, 1, 2}, 0, [](const auto&) { return std::vector<std::size_t>{1}; }, 3,
+                        threads, count),
+                    std::logic_error);
+    CHECK_THROWS_AS(
+        run_two_rounds(
+            {0}, 0, [](const auto&) { return std::vector<std::size_t>{7}; }, 3, threads, count),
+        std::logic_error);
+    runs = 0;
+    CHECK_THROWS_WITH(run_two_rounds(
+                          {0, 1, 2, 3}, 1,
+                          [](const std::vector<char>& finished) -> std::vector<std::size_t> {
+                            if (finished[0]) throw std::runtime_error("no choice");
+                            return {};
+                          },
+                          5, threads, count),
+                      "no choice");
+    // On one thread the choice failed as soon as task 0 had finished, and nothing ran after it;
+    // on two, the other thread's task may have begun before, and it still ends.
+    if (threads == 1) CHECK(runs == 1);
+  }
+}
+
+TEST_CASE("The first round's ids must be distinct and below the task count") {
+  const auto nothing = [](const auto&) { return std::vector<std::size_t>{}; };
+  CHECK_THROWS_AS(run_two_rounds({0, 0}, 0, nothing, 2, 1, [](std::size_t) {}),
+                  std::invalid_argument);
+  CHECK_THROWS_AS(run_two_rounds({0, 2}, 0, nothing, 2, 1, [](std::size_t) {}),
+                  std::invalid_argument);
+}
