@@ -408,3 +408,45 @@ TEST_CASE("A fan switched on above a power raises hA by G_P s(P), s a smooth swi
              Catch::Contains("give reference_power (a boost proportional to the power) or "
                              "switch_power and switch_width"));
 }
+
+TEST_CASE("A switched fan driven through a lag follows the switch of the lagged power") {
+  // Power step P at t_s = 10 s into one node with a fan switched at P_on through the lag tau:
+  //   C dT/dt = P - hA (T - T_amb) - G_P s(P_b) (T - T_amb),   tau dP_b/dt = P - P_b,
+  // P_b = 0 at the start. The reference is the classical Runge-Kutta method with 1 ms steps,
+  // whose error (of order dt^4) is far below the solver's.
+  const double gain = 0.04, on = 1.6, width = 0.15, tau = 20.0, power = 2.5, step = 10.0;
+  const auto switched = [&](double lagged) {
+    return 1.0 / (1.0 + std::exp(-(lagged - on) / width));
+  };
+  const auto slope = [&](const Eigen::Vector2d& y) {  // y = (T - T_amb, P_b) after the step
+    return Eigen::Vector2d((power - (kConductance + gain * switched(y(1))) * y(0)) / kCapacity,
+                           (power - y(1)) / tau);
+  };
+  const Trace trace =
+      simulate(physical_muscle_yaml(),
+               {"drive.power={type: steps, initial: 0 W, times: [10 s], values: [2.5 W]}",
+                "scenario.duration=200 s",
+                "muscle.effects=[{type: heating_convection, name: fan, conductance: 0.04 W/K, "
+                "switch_power: 1.6 W, switch_width: 0.15 W, time_constant: 20 s}]"});
+  Eigen::Vector2d y(0.0, 0.0);
+  double t = step, worst = 0.0;
+  constexpr double dt = 1e-3;
+  for (std::size_t i = 0; i < trace.time.size(); ++i) {
+    if (trace.time[i] <= step) continue;
+    while (t < trace.time[i] - dt / 2) {
+      const Eigen::Vector2d k1 = slope(y), k2 = slope(y + dt / 2 * k1), k3 = slope(y + dt / 2 * k2),
+                            k4 = slope(y + dt * k3);
+      y += dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+      t += dt;
+    }
+    worst = std::max(worst, std::abs(trace["muscle/temperature"][i] - kAmbient - y(0)));
+  }
+  INFO("worst error " << worst << " K");
+  CHECK(worst <= allowed(1e-8, 50.0) + 50.0 * 1e-6);
+  // The fan comes on only once the lagged power passes P_on, tau ln(P / (P - P_on)) = 20.4 s
+  // after the step: until then the node heats nearly as the bare one, C dT/dt = P - hA dT.
+  const double bare = power / kConductance * (1.0 - std::exp(-kConductance / kCapacity * 10.0));
+  CHECK(trace["muscle/temperature"][200] - kAmbient == Approx(bare).epsilon(0.01));
+  CHECK(trace["muscle/temperature"].back() - kAmbient ==
+        Approx(power / (kConductance + gain * switched(power))).epsilon(2e-3));
+}
