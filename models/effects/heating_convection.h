@@ -15,6 +15,9 @@ namespace tcpmsim {
 // A fan switched by the heating (a relay, a thermostat) runs above a power P_on instead:
 //     Q = G_P s(P) (T - T_amb),   s(P) = 1 / (1 + exp(-(P - P_on) / w)),
 // a smooth switch of width w (given by switch_power and switch_width, not reference_power).
+// The switch is not quite off at rest: s(0) = 1 / (1 + exp(P_on / w)), 0.7 % at P_on = 5 w,
+// but up to 0.47 within the widths discover tries (w up to half the peak power, P_on down to a
+// twentieth); that share at rest is a constant addition to hA, which the base fit can take.
 // A flow that spins up and down follows the input late: with a time constant tau the boost is
 // driven by the lagged input P_b, tau dP_b/dt = P - P_b (P_b = P at the start; tau = 0: at
 // once). With G_P = 0 it takes nothing (discover's nested start).
