@@ -11,6 +11,7 @@
 #include "identification/candidate_aliases.h"
 #include "identification/discovery_setup.h"
 #include "identification/model_order.h"
+#include "identification/residual_diagnostics.h"
 #include "kinds/standard_kinds.h"
 #include "sim/not_a_number.h"
 #include "sim/parallel_rounds.h"
@@ -85,21 +86,42 @@ void score(CandidateOutcome& outcome, const Baseline& base, const std::vector<do
            const std::vector<std::vector<double>>& measured, const DiscoverSetup& setup) {
   const DiscoverRequest& request = setup.request;
   const FitResult& result = outcome.result;
-  outcome.bic = bic(result.identification, result.estimates.size());
-  outcome.delta_bic = outcome.bic - base.bic;
   outcome.validation_rmse = result.validation.rmse;
   outcome.gap_shrink = 1.0 - combined_rmse(result.validation.rmse, noise) / base.combined_rmse;
-  // Does what the effect changes look like what the base model missed?
   const auto augmented =
       simulate_outputs(outcome.spec.problem, values_of(result), outcome.spec.problem.validation);
+  // The noise's colour, from what the candidate leaves of data no fit has seen: a load cell's
+  // filter or a drift makes neighbouring samples alike, and counted as independent they would
+  // make any candidate that follows a little of that noise significant.
+  const auto left = difference(measured, augmented);
+  outcome.residual_autocorrelation.clear();
+  outcome.evidence_shares.clear();
+  for (const auto& series : left) {
+    outcome.residual_autocorrelation.push_back(autocorrelation(series, 1)[1]);
+    outcome.evidence_shares.push_back(evidence_share(series));
+  }
+  outcome.delta_bic =
+      bic_change(result.identification, result.estimates.size(), base.result.identification,
+                 base.result.estimates.size(), outcome.evidence_shares);
+  outcome.bic = base.bic + outcome.delta_bic;
+  // Does what the effect changes look like what the base model missed? The matched filter's
+  // statistic, standard normal when the residual is noise alone: its variance grows by
+  // 1 / share for noise of that colour.
   const auto change = difference(augmented, base.validation);
   const auto residual = difference(measured, base.validation);
-  const double change_norm = std::sqrt(weighted_dot(change, change, noise));
+  double change_norm = 0.0, coloured_norm = 0.0;
+  for (std::size_t k = 0; k < change.size(); ++k) {
+    const double power = weighted_dot({change[k]}, {change[k]}, {noise[k]});
+    change_norm += power;
+    coloured_norm += power / outcome.evidence_shares[k];
+  }
+  change_norm = std::sqrt(change_norm);
+  coloured_norm = std::sqrt(coloured_norm);
   const double residual_norm = std::sqrt(weighted_dot(residual, residual, noise));
   const double projection = weighted_dot(change, residual, noise);
   outcome.signature_match =
       change_norm * residual_norm > 0 ? projection / (change_norm * residual_norm) : 0.0;
-  outcome.signature_z = change_norm > 0 ? projection / change_norm : 0.0;
+  outcome.signature_z = coloured_norm > 0 ? projection / coloured_norm : 0.0;
   outcome.validation_change = change;
   // Where the base model misses an output by more than the noise (so `none` is ruled out), an
   // effect that closes only a sliver of that gap is not what is missing, however significant
@@ -381,6 +403,26 @@ double combined_rmse(const std::vector<double>& rmse, const std::vector<double>&
   double sum = 0.0;
   for (std::size_t k = 0; k < rmse.size(); ++k) sum += std::pow(rmse[k] / noise[k], 2);
   return std::sqrt(sum / static_cast<double>(rmse.size()));
+}
+
+double evidence_share(std::span<const double> residual) {
+  if (residual.size() < 3) return 1.0;
+  const double rho = std::clamp(autocorrelation(residual, 1)[1], 0.0, 0.99);
+  return (1.0 - rho) / (1.0 + rho);
+}
+
+double bic_change(const WindowScore& candidate, std::size_t parameters, const WindowScore& base,
+                  std::size_t base_parameters, const std::vector<double>& shares) {
+  const double n = static_cast<double>(candidate.samples);
+  const auto log_rss = [](double rmse) {
+    return std::log(std::max(rmse * rmse, std::numeric_limits<double>::min()));
+  };
+  double value = 0.0;
+  for (std::size_t k = 0; k < candidate.rmse.size(); ++k)
+    value += shares[k] * n * (log_rss(candidate.rmse[k]) - log_rss(base.rmse[k]));
+  const double total = n * static_cast<double>(candidate.rmse.size());
+  return value +
+         (static_cast<double>(parameters) - static_cast<double>(base_parameters)) * std::log(total);
 }
 
 double bic(const WindowScore& identification, std::size_t parameters) {

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,11 @@ struct CandidateOutcome {
   // z = sum(r d / sigma^2) / sqrt(sum(d^2 / sigma^2)), standard normal when r is only noise.
   double signature_match = 0.0;
   double signature_z = 0.0;
+  // Per output: the lag-1 autocorrelation of what the candidate leaves of the validation data,
+  // and the evidence share it gives a sample (evidence_share): the BIC change and the signature
+  // z count the samples of noise that is not white for what they are worth.
+  std::vector<double> residual_autocorrelation;
+  std::vector<double> evidence_shares;
   std::string signature;           // the diagnostic that should give it away
   std::string signature_evidence;  // that diagnostic's value on the base residual
   bool significant = false;
@@ -132,5 +138,17 @@ double combined_rmse(const std::vector<double>& rmse, const std::vector<double>&
 // BIC of a least-squares fit with an unknown variance per output:
 // sum_k n ln(RSS_k / n) + p ln(N), with RSS_k = n rmse_k^2 and N = n * outputs.
 double bic(const WindowScore& identification, std::size_t parameters);
+
+// The evidence one sample of an output's residual carries when the noise is not white, as the
+// share (1 - rho) / (1 + rho) of a white sample's, rho the residual's lag-1 autocorrelation
+// (clamped to [0, 0.99]): n samples of AR(1) noise tell a smooth change apart as well as
+// n (1 - rho) / (1 + rho) independent ones. 1 for white noise.
+double evidence_share(std::span<const double> residual);
+
+// A candidate's BIC against the base model's where each output's samples carry `shares` of a
+// white sample's evidence: sum_k share_k n ln(RSS_k / RSS_base,k) + (p - p_base) ln(N). With
+// every share 1 it is bic(candidate) - bic(base).
+double bic_change(const WindowScore& candidate, std::size_t parameters, const WindowScore& base,
+                  std::size_t base_parameters, const std::vector<double>& shares);
 
 }  // namespace tcpmsim::fit

@@ -32,10 +32,11 @@ bool residual_white(const Discovery& discovery, std::size_t output) {
   return discovery.diagnostics.outputs[output].whiteness.p_value >= 0.01;
 }
 
-nlohmann::json rmse_json(const Discovery& discovery, const std::vector<double>& rmse) {
+nlohmann::json per_output_json(const Discovery& discovery, const std::vector<double>& values) {
   nlohmann::json json = nlohmann::json::object();
   const auto& outputs = problem_of(discovery).outputs;
-  for (std::size_t k = 0; k < rmse.size(); ++k) json[outputs[k].channel] = number_or_null(rmse[k]);
+  for (std::size_t k = 0; k < values.size(); ++k)
+    json[outputs[k].channel] = number_or_null(values[k]);
   return json;
 }
 
@@ -153,12 +154,15 @@ std::string discovery_json(const Discovery& discovery) {
       entry["cost"] = candidate.result.cost;
       entry["superseded_in_family"] = candidate.superseded;
       entry["delta_bic"] = candidate.delta_bic;
-      entry["validation_rmse"] = rmse_json(discovery, candidate.validation_rmse);
+      entry["validation_rmse"] = per_output_json(discovery, candidate.validation_rmse);
       entry["gap_shrink"] = candidate.gap_shrink;
       entry["gap_closed"] = number_or_null(candidate.gap_closed);
       entry["missed_gap_closed"] = number_or_null(candidate.missed_gap_closed);
       entry["signature_match"] = candidate.signature_match;
       entry["signature_z"] = candidate.signature_z;
+      entry["residual_autocorrelation"] =
+          per_output_json(discovery, candidate.residual_autocorrelation);
+      entry["evidence_share"] = per_output_json(discovery, candidate.evidence_shares);
       entry["significant"] = candidate.significant;
       entry["signature"] = candidate.signature;
       entry["evidence"] = candidate.signature_evidence;
@@ -177,8 +181,8 @@ std::string discovery_json(const Discovery& discovery) {
   for (const auto& skipped : discovery.skipped)
     json["skipped"].push_back({{"effect", skipped.name}, {"reason", skipped.reason}});
   json["baseline"] = {
-      {"validation_rmse", rmse_json(discovery, discovery.base.validation.rmse)},
-      {"identification_rmse", rmse_json(discovery, discovery.base.identification.rmse)},
+      {"validation_rmse", per_output_json(discovery, discovery.base.validation.rmse)},
+      {"identification_rmse", per_output_json(discovery, discovery.base.identification.rmse)},
       {"bic", discovery.base_bic},
       {"cost", discovery.base.cost},
       {"candidate_rounds", discovery.base_rounds},
@@ -188,12 +192,12 @@ std::string discovery_json(const Discovery& discovery) {
   const CandidateOutcome* verdict = verdict_of(discovery);
   const auto& augmented_rmse = verdict ? verdict->validation_rmse : discovery.base.validation.rmse;
   json["augmented"] = {{"effect", verdict ? nlohmann::json(verdict->name) : nullptr},
-                       {"validation_rmse", rmse_json(discovery, augmented_rmse)},
+                       {"validation_rmse", per_output_json(discovery, augmented_rmse)},
                        {"parameters", estimates_json(verdict ? verdict->result : discovery.base)}};
   json["gap_shrink"] = verdict ? verdict->gap_shrink : 0.0;
   json["gap_closed"] = number_or_null(discovery.gap_closed);
-  json["noise"] = rmse_json(discovery, discovery.noise);
-  json["noise_floor"] = rmse_json(discovery, discovery.setup.floor);
+  json["noise"] = per_output_json(discovery, discovery.noise);
+  json["noise_floor"] = per_output_json(discovery, discovery.setup.floor);
   json["noise_floor_source"] = nlohmann::json::object();
   json["at_noise_floor"] = nlohmann::json::object();
   json["residual_white"] = nlohmann::json::object();
