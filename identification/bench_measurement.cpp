@@ -13,7 +13,7 @@ namespace tcpmsim::fit {
 namespace {
 
 Instrument read_instrument(const ConfigNode& entry, const Scenario& scenario) {
-  entry.declare({"channel", "output", "unit", "noise", "resolution", "spikes"});
+  entry.declare({"channel", "output", "unit", "noise", "correlated_noise", "resolution", "spikes"});
   Instrument instrument;
   instrument.channel = entry.text("channel");
   if (!measured_quantity_of(instrument.channel) || instrument.channel == "time") {
@@ -37,6 +37,13 @@ Instrument read_instrument(const ConfigNode& entry, const Scenario& scenario) {
       entry.quantity_or("noise", instrument.si_unit, 0.0, ValueCheck::non_negative());
   instrument.resolution =
       entry.quantity_or("resolution", instrument.si_unit, 0.0, ValueCheck::non_negative());
+  if (const auto correlated = entry.find("correlated_noise")) {
+    correlated->declare({"size", "correlation_time"});
+    instrument.correlated_noise =
+        correlated->quantity("size", instrument.si_unit, ValueCheck::non_negative());
+    instrument.correlation_time =
+        correlated->quantity("correlation_time", "s", ValueCheck::positive());
+  }
   if (const auto spikes = entry.find("spikes")) {
     spikes->declare({"probability", "size"});
     instrument.spike_probability = spikes->number("probability", ValueCheck::between(0.0, 1.0));
@@ -45,7 +52,35 @@ Instrument read_instrument(const ConfigNode& entry, const Scenario& scenario) {
   return instrument;
 }
 
-// One reading: the true value, a spike now and then, normal noise, then the resolution.
+// An instrument's correlated noise, one reading after another: first-order with its
+// correlation time, stationary from the first reading.
+class CorrelatedNoise {
+ public:
+  CorrelatedNoise(const Instrument& instrument, std::uint64_t seed)
+      : instrument_(instrument),
+        stream_(seed, "instrument " + instrument.channel + " correlated") {}
+
+  double at(double time) {
+    const double draw = instrument_.correlated_noise * stream_.normal();
+    if (started_) {
+      const double phi = std::exp(-(time - last_time_) / instrument_.correlation_time);
+      last_ = phi * last_ + std::sqrt(1.0 - phi * phi) * draw;
+    } else {
+      last_ = draw;
+      started_ = true;
+    }
+    last_time_ = time;
+    return last_;
+  }
+
+ private:
+  const Instrument& instrument_;
+  RandomStream stream_;
+  bool started_ = false;
+  double last_ = 0.0, last_time_ = 0.0;
+};
+
+// One reading: the true value, a spike now and then, white normal noise, then the resolution.
 double read(const Instrument& instrument, double value, RandomStream& stream) {
   if (instrument.spike_probability > 0 && stream.chance(instrument.spike_probability))
     value += stream.chance(0.5) ? instrument.spike_size : -instrument.spike_size;
@@ -89,9 +124,13 @@ std::string measure(const Scenario& scenario, const Bench& bench, const UnitSyst
     text += "," + instrument.channel + "[" + instrument.unit + "]";
     RandomStream stream(bench.seed, "instrument " + instrument.channel);
     const auto to_unit = units.converter(instrument.si_unit, instrument.unit);
+    CorrelatedNoise correlated(instrument, bench.seed);
     std::vector<double> column;
-    for (double value : picker.values[k])
+    for (std::size_t i = 0; i < picker.values[k].size(); ++i) {
+      double value = picker.values[k][i];
+      if (instrument.correlated_noise > 0) value += correlated.at(picker.times[i]);
       column.push_back(to_unit(read(instrument, value, stream)));
+    }
     readings.push_back(std::move(column));
   }
   text += "\n";

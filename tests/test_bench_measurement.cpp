@@ -96,6 +96,50 @@ channels:
   CHECK(std::abs(double(spikes) - expected) < 4.0 * std::sqrt(expected));
 }
 
+TEST_CASE(
+    "A correlated noise is first-order: its size, correlation time, and the white part kept") {
+  const Scenario scenario = staircase_muscle();
+  fit::OutputPicker clean(*scenario.system, {"load.force"});
+  integrate(scenario, clean);
+  const auto measured = [&](const std::string& force) {
+    return parse_measured_csv(
+        fit::measure(scenario, bench_from("seed: 3\nchannels:\n" + force, scenario),
+                     *shared_units()),
+        "bench.csv", *shared_units());
+  };
+  const MeasuredData white =
+      measured("  - {channel: force, output: load.force, unit: mN, noise: 1 mN}\n");
+  const MeasuredData both = measured(
+      "  - {channel: force, output: load.force, unit: mN, noise: 1 mN,\n"
+      "     correlated_noise: {size: 2 mN, correlation_time: 0.5 s}}\n");
+  // The correlated part alone: both readings less the white ones (the same draws, from the
+  // instrument's own stream).
+  const std::size_t n = clean.times.size();
+  std::vector<double> part(n);
+  for (std::size_t i = 0; i < n; ++i)
+    part[i] = both.find("force")->values[i] - white.find("force")->values[i];
+  double squares = 0.0;
+  for (const double e : part) squares += e * e;
+  // 10001 samples 0.1 s apart with tau = 0.5 s: about n / (2 tau / dt) = 1000 independent ones.
+  const double effective = double(n) * (1 - std::exp(-0.2)) / (1 + std::exp(-0.2));
+  CHECK(std::sqrt(squares / double(n)) == Approx(2e-3).epsilon(4.0 / std::sqrt(2.0 * effective)));
+  // Its autocorrelation at lags of 1, 2 and 5 samples is exp(-k dt / tau).
+  for (const int lag : {1, 2, 5}) {
+    double product = 0.0;
+    for (std::size_t i = static_cast<std::size_t>(lag); i < n; ++i)
+      product += part[i] * part[i - static_cast<std::size_t>(lag)];
+    const double correlation = product / squares;
+    INFO("lag " << lag);
+    CHECK(correlation == Approx(std::exp(-0.1 * lag / 0.5)).margin(4.0 / std::sqrt(effective)));
+  }
+  CHECK_THAT(
+      bench_error("channels:\n  - {channel: force, output: load.force, unit: N, "
+                  "correlated_noise: {size: 1 mN}}\n",
+                  scenario),
+      Catch::EndsWith("bench.yaml:2:69: error: channels[0].correlated_noise: missing required key "
+                      "'correlation_time'"));
+}
+
 TEST_CASE("A synthetic measurement is the same for the same seed, and each channel draws alone") {
   const Scenario scenario = staircase_muscle();
   const std::string force = "  - {channel: force, output: load.force, unit: N, noise: 1 mN}\n";
