@@ -12,6 +12,7 @@
 #include "identification/discovery.h"
 #include "identification/discovery_report.h"
 #include "identification/noise_floor.h"
+#include "identification/residual_diagnostics.h"
 #include "sim/random_stream.h"
 #include "sim/run.h"
 #include "tests/support/discover_data.h"
@@ -45,6 +46,37 @@ TEST_CASE("BIC is sum_k n ln(RSS_k / n) + p ln N for a fit with one unknown vari
   CHECK(fit::bic(better, 8) < fit::bic(score, 7));
   CHECK(fit::combined_rmse({2e-3, 5e-4}, {1e-3, 1e-3}) ==
         Approx(std::sqrt((4.0 + 0.25) / 2)).epsilon(1e-14));
+}
+
+TEST_CASE(
+    "A residual's samples count for (1 - rho) / (1 + rho) of white ones, rho its lag-1 "
+    "autocorrelation") {
+  // First-order noise e_i = phi e_(i-1) + w_i: rho = phi, to its sampling error.
+  RandomStream stream(11, "evidence share");
+  const std::size_t n = 20000;
+  for (const double phi : {0.0, 0.5, 0.9}) {
+    std::vector<double> series(n);
+    for (std::size_t i = 1; i < n; ++i) series[i] = phi * series[i - 1] + stream.normal();
+    const double rho = fit::autocorrelation(series, 1)[1];
+    INFO("phi " << phi);
+    CHECK(rho == Approx(phi).margin(4.0 / std::sqrt(double(n))));
+    const double counted = std::max(rho, 0.0);  // white noise's rho may fall below 0
+    CHECK(fit::evidence_share(series) == Approx((1 - counted) / (1 + counted)).epsilon(1e-12));
+  }
+  // A residual that alternates is not rewarded: rho is clamped at 0.
+  std::vector<double> alternating(n);
+  for (std::size_t i = 0; i < n; ++i) alternating[i] = (i % 2 ? 1.0 : -1.0) + 0.1 * stream.normal();
+  CHECK(fit::evidence_share(alternating) == 1.0);
+  // The BIC change weighs each output's log-likelihood term by its share; the parameters' price
+  // p ln N stays whole.
+  fit::WindowScore base, candidate;
+  base.samples = candidate.samples = 400;
+  base.rmse = {2e-3, 5e-4};
+  candidate.rmse = {1.5e-3, 5e-4};
+  CHECK(fit::bic_change(candidate, 9, base, 7, {1.0, 1.0}) ==
+        Approx(fit::bic(candidate, 9) - fit::bic(base, 7)).epsilon(1e-12));
+  CHECK(fit::bic_change(candidate, 9, base, 7, {0.25, 1.0}) ==
+        Approx(0.25 * 400 * std::log(0.5625) + 2 * std::log(800.0)).epsilon(1e-12));
 }
 
 TEST_CASE("The base model is at the noise floor by the size of its residual, not its whiteness") {
