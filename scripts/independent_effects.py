@@ -77,6 +77,7 @@ POWER_COMPONENTS, DEFLECTION_COMPONENTS = 7, 11
 
 # Independent random streams of a seed: default_rng([seed, stream, ...]).
 STREAM_PROTOCOL, STREAM_TRUTH, STREAM_EFFECT, STREAM_FORCE, STREAM_COIL = 1, 2, 3, 4, 5
+STREAM_FORCE_CORRELATED = 6
 
 # The instruments (7.3.1, 7.3.6).
 FORCE_RESOLUTION = 0.5e-3         # N: Mark-10 M5-05
@@ -1305,25 +1306,42 @@ def outputs(trace, effects=()):
 # ---------------------------------------------------------------------------------------------
 # Measurement and the CSV
 
-def force_noise_floor(noise):
-    """The RMS a perfect model leaves on the load cell: normal noise and the 0.5 mN rounding
-    (uniform, variance q^2/12) [N]."""
-    return math.sqrt(noise ** 2 + FORCE_RESOLUTION ** 2 / 12.0)
+def force_noise_floor(noise, correlated=0.0):
+    """The RMS a perfect model leaves on the load cell: normal noise, a correlated part of sd
+    `correlated` and the 0.5 mN rounding (uniform, variance q^2/12) [N]."""
+    return math.sqrt(noise ** 2 + correlated ** 2 + FORCE_RESOLUTION ** 2 / 12.0)
+
+
+def correlated_noise(times, size, correlation_time, rng):
+    """First-order (AR(1)) noise of sd `size` and correlation time [s] at `times`, stationary
+    from the first sample: e_i = phi e_(i-1) + sqrt(1 - phi^2) size w_i, phi = exp(-dt/tau)."""
+    draws = size * rng.standard_normal(len(times))
+    noise = np.empty(len(times))
+    noise[0] = draws[0]
+    phis = np.exp(-np.diff(times) / correlation_time)
+    for i, phi in enumerate(phis, start=1):
+        noise[i] = phi * noise[i - 1] + math.sqrt(1.0 - phi * phi) * draws[i]
+    return noise
 
 
 def quantise(value, resolution):
     return resolution * np.round(np.asarray(value) / resolution)
 
 
-def measure(trace, force, coil, noise, seed):
+def measure(trace, force, coil, noise, seed, correlated=None):
     """The bench's readings (SI): power as applied; deflection on the 0.02 mm grid; force plus
     normal noise (sd `noise` [N]) rounded to 0.5 mN; L* plus normal noise (5e-4) and spikes
     (probability 0.005 per sample, size uniform in [0.25, 1] x 0.02, sign random). The force's
     and L*'s draws come from their own streams, and the force's standard normals do not depend
-    on `noise`, so cases at several noise levels share them."""
+    on `noise`, so cases at several noise levels share them. `correlated`, (sd [N], correlation
+    time [s]), adds a load cell's wander, first-order noise from a stream of its own, so the
+    white part stays as it was."""
     rng_force = np.random.default_rng([seed, STREAM_FORCE])
     rng_coil = np.random.default_rng([seed, STREAM_COIL])
     n = len(trace.t)
+    if correlated:
+        force = force + correlated_noise(trace.t, *correlated,
+                                         np.random.default_rng([seed, STREAM_FORCE_CORRELATED]))
     measured_force = quantise(force + noise * rng_force.standard_normal(n), FORCE_RESOLUTION)
     spikes = rng_coil.random(n) < SPIKE_PROBABILITY
     sizes = SPIKE_SIZE * rng_coil.uniform(0.25, 1.0, n) * rng_coil.choice([-1.0, 1.0], n)
@@ -1374,34 +1392,39 @@ class Case:
 
 
 def define_case(effect, seed, noise_mN, form=None, size=None, controls=False, style="brief",
-                truth=None):
+                truth=None, correlated=None):
     """What defines a case, without simulating it: (definition, truth, hidden effect or None).
-    The base parameters, the effect's form and size come from their own streams of the seed."""
+    The base parameters, the effect's form and size come from their own streams of the seed.
+    `correlated`: the load cell's correlated noise, (sd [mN], correlation time [s]), or None."""
     truth = draw_truth(seed) if truth is None else truth
     hidden, size = draw_effect(effect, seed, form, size, controls)
     definition = {
         "effect": effect, "form": hidden.form if hidden else "none", "size": size,
         "seed": seed, "noise_mN": noise_mN, "protocol": style,
-        "force_noise_floor_mN": 1e3 * force_noise_floor(noise_mN * 1e-3),
+        "force_noise_floor_mN": 1e3 * force_noise_floor(noise_mN * 1e-3,
+                                                        correlated[0] * 1e-3 if correlated else 0.0),
         "truth": dataclasses.asdict(truth),
         "hidden": hidden.describe() if hidden else None,
         "generator": "scripts/independent_effects.py"}
+    if correlated:
+        definition["correlated_noise_mN"], definition["correlation_time_s"] = correlated
     return definition, truth, hidden
 
 
 def make_case(effect, seed, noise_mN, form=None, size=None, controls=False, style="brief",
-              truth=None, inputs=None) -> Case:
+              truth=None, inputs=None, correlated=None) -> Case:
     """The chapter-7 data of a seed with a hidden effect (or "none"), read by the bench with
     `noise_mN` of load-cell noise. The protocol, base parameters, effect and noise each come
     from their own stream of the seed."""
     definition, truth, hidden = define_case(effect, seed, noise_mN, form, size, controls, style,
-                                            truth)
+                                            truth, correlated)
     inputs = make_inputs(seed, style=style) if inputs is None else inputs
     effects = () if hidden is None else (hidden,)
     trace = simulate(inputs, truth, effects)
     force, coil = outputs(trace, effects)
     return Case(definition, trace, force, coil,
-                measure(trace, force, coil, noise_mN * 1e-3, seed))
+                measure(trace, force, coil, noise_mN * 1e-3, seed,
+                        (correlated[0] * 1e-3, correlated[1]) if correlated else None))
 
 
 def effect_size(case):
@@ -1423,7 +1446,9 @@ def write_case(case, csv_path, json_path=None, channels=None, truth_path=None):
     d = case.definition
     write_csv(csv_path, case.readings, comments=[
         f"independent_effects.py: hidden {d['effect']} ({d['form']}, size {d['size']:.3f}), "
-        f"seed {d['seed']}, load-cell noise {d['noise_mN']} mN"], channels=channels)
+        f"seed {d['seed']}, load-cell noise {d['noise_mN']} mN"
+        + (f" and {d['correlated_noise_mN']} mN correlated over {d['correlation_time_s']} s"
+           if "correlated_noise_mN" in d else "")], channels=channels)
     if json_path:
         with open(json_path, "w", encoding="utf-8") as file:
             json.dump(d, file, indent=1)
@@ -1441,6 +1466,8 @@ def main(argv=None):
     parser.add_argument("--size", type=float, help="size factor (default: uniform(0.7, 1.3))")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--noise", type=float, default=2.0, help="load-cell noise [mN]")
+    parser.add_argument("--correlated-noise", metavar="SIZE:TAU",
+                        help="also a correlated load-cell noise: SIZE mN over TAU s (AR(1))")
     parser.add_argument("--protocol", choices=("brief", "thesis"), default="brief")
     parser.add_argument("--controls", action="store_true",
                         help="draw from tcpmsim's own laws too")
@@ -1456,8 +1483,12 @@ def main(argv=None):
                                                        else "") for f in forms) or "-"))
         return
     noise = int(arguments.noise) if arguments.noise.is_integer() else arguments.noise
+    correlated = (tuple(float(v) for v in arguments.correlated_noise.split(":"))
+                  if arguments.correlated_noise else None)
+    if correlated and (len(correlated) != 2 or correlated[0] < 0 or correlated[1] <= 0):
+        parser.error("--correlated-noise: expected SIZE:TAU, a size >= 0 mN and a time > 0 s")
     case = make_case(arguments.effect, arguments.seed, noise, arguments.form, arguments.size,
-                     arguments.controls, arguments.protocol)
+                     arguments.controls, arguments.protocol, correlated=correlated)
     if arguments.size_report:
         case.definition["effect_size"] = effect_size(case)
     stem = arguments.output[:-4] if arguments.output.endswith(".csv") else arguments.output

@@ -180,6 +180,29 @@ class Measurement(unittest.TestCase):
         self.assertEqual(a.definition, b.definition)
         self.assertFalse(np.array_equal(a.readings["force"], c.readings["force"]))
 
+    def test_a_correlated_noise_is_first_order_and_leaves_the_white_part(self):
+        seed = 3
+        inputs = ie.make_inputs(seed, protocol=SHORT)
+        white = ie.make_case("none", seed, 2, inputs=inputs)
+        both = ie.make_case("none", seed, 2, inputs=inputs, correlated=(1.5, 0.5))
+        self.assertEqual(both.definition["correlated_noise_mN"], 1.5)
+        self.assertAlmostEqual(both.definition["force_noise_floor_mN"],
+                               math.sqrt(4 + 2.25 + 0.25 / 12))
+        self.assertNotIn("correlated_noise_mN", white.definition)
+        # The correlated part alone, as drawn (its stream is its own).
+        times = np.arange(0, 2000.0, 1 / 16)
+        part = ie.correlated_noise(times, 1.5, 0.5, np.random.default_rng(5))
+        effective = len(times) * (1 - math.exp(-1 / 8)) / (1 + math.exp(-1 / 8))
+        self.assertAlmostEqual(np.std(part), 1.5, delta=4 * 1.5 / math.sqrt(2 * effective))
+        for lag in (1, 2, 8):
+            rho = np.dot(part[lag:], part[:-lag]) / np.dot(part, part)
+            self.assertAlmostEqual(rho, math.exp(-lag / 16 / 0.5), delta=4 / math.sqrt(effective))
+        # Readings differ from the white case's by the wander and the rounding only.
+        difference = both.readings["force"] - white.readings["force"]
+        self.assertGreater(np.std(difference), 1e-3)
+        np.testing.assert_array_equal(both.readings["inductance_measure"],
+                                      white.readings["inductance_measure"])
+
 
 if __name__ == "__main__":
     unittest.main()
