@@ -72,9 +72,10 @@ struct CandidateOutcome {
 };
 
 // What a discovery concludes: an effect is named (the best significant candidate); `none`, the
-// base model already fits to the noise (every output's validation residual is white and its
-// RMSE within the margin of the noise floor); or `unexplained`, the residual is structured
-// and no candidate explains it.
+// base model already fits to the noise (every output's validation RMSE within the margin of
+// its noise floor, and no candidate significant; a residual that is not white does not stop it,
+// see at_noise_floor); or `unexplained`, the base model misses by more than the noise and no
+// candidate explains it.
 enum class VerdictKind { effect, none, unexplained };
 const char* verdict_kind_name(VerdictKind kind);
 
