@@ -471,8 +471,8 @@ Discovery discover(const DiscoverSetup& setup) {
   for (const auto& estimate : base.estimates) fitted.set_parameter(estimate.path, estimate.value);
   std::vector<std::string> model_outputs;
   for (const auto& output : spec.problem.outputs) model_outputs.push_back(output.output);
-  Candidates catalogue =
-      effect_candidates(*spec.problem.model, fitted, *spec.problem.data, model_outputs);
+  Candidates catalogue = effect_candidates(*spec.problem.model, fitted, *spec.problem.data,
+                                           model_outputs, setup.roles);
   const auto& wanted = setup.request.effects;
   std::vector<EffectCandidate> tried;
   const int max_order = setup.request.max_order;
@@ -520,8 +520,8 @@ Discovery discover(const DiscoverSetup& setup) {
   discovery.setup.base = baseline.spec;
   discovery.base_bic = baseline.bic;
   discovery.noise = noise;
-  discovery.diagnostics =
-      diagnose(baseline.spec.problem, values_of(baseline.result), setup.request.inputs);
+  discovery.diagnostics = diagnose(baseline.spec.problem, values_of(baseline.result),
+                                   setup.request.inputs, setup.roles);
   for (auto& outcome : outcomes) {
     if (outcome.status == "fitted")
       outcome.signature_evidence =

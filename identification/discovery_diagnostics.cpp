@@ -60,11 +60,11 @@ std::vector<double> model_temperature(const FitProblem& problem, const std::vect
 }
 
 std::vector<Feature> features(const FitProblem& problem, const std::vector<double>& values,
-                              const std::vector<double>& time, std::size_t first,
-                              std::size_t last) {
+                              const std::vector<double>& time, std::size_t first, std::size_t last,
+                              const MeasuredRoles& roles) {
   const MeasuredData& data = *problem.data;
   std::vector<Feature> result;
-  const std::vector<double> power = measured(data, "power", first, last);
+  const std::vector<double> power = measured(data, roles.power, first, last);
   if (!power.empty()) result.push_back({"power", power});
   const std::vector<double> temperature =
       model_temperature(problem, values, {time.front(), time.back()});
@@ -75,7 +75,7 @@ std::vector<Feature> features(const FitProblem& problem, const std::vector<doubl
     for (double t : temperature) rise.push_back(t - ambient);
     result.push_back({"temperature rise", rise});
   }
-  const std::vector<double> deflection = measured(data, "deflection", first, last);
+  const std::vector<double> deflection = measured(data, roles.deflection, first, last);
   if (!deflection.empty()) {
     result.push_back({"deflection", deflection});
     const std::vector<double> rate = rate_of(time, deflection);
@@ -118,7 +118,7 @@ double ResidualDiagnostics::feature(std::size_t output, const std::string& name)
 }
 
 ResidualDiagnostics diagnose(const FitProblem& problem, const std::vector<double>& values,
-                             const std::vector<std::string>& inputs) {
+                             const std::vector<std::string>& inputs, const MeasuredRoles& roles) {
   const auto [first, last] = samples_in(*problem.data, problem.validation);
   ResidualDiagnostics result;
   const auto& all_times = problem.data->time();
@@ -130,10 +130,11 @@ ResidualDiagnostics diagnose(const FitProblem& problem, const std::vector<double
       (result.time.back() - result.time.front()) / static_cast<double>(result.time.size() - 1);
   result.bands = residual_bands(dt);
   result.bound = 1.96 / std::sqrt(static_cast<double>(result.time.size()));
-  result.features = features(problem, values, result.time, first, last);
+  result.roles = roles;
+  result.features = features(problem, values, result.time, first, last, roles);
   const auto simulated = simulate_outputs(problem, values, problem.validation);
   const auto measured_values = measured_outputs(problem, problem.validation);
-  const std::vector<double> deflection = measured(*problem.data, "deflection", first, last);
+  const std::vector<double> deflection = measured(*problem.data, roles.deflection, first, last);
   const int lags = std::min<int>(32, static_cast<int>(result.time.size() / 4));
   for (std::size_t k = 0; k < problem.outputs.size(); ++k) {
     OutputDiagnostics output;
@@ -190,7 +191,7 @@ std::string signature_evidence(const std::string& effect, const ResidualDiagnost
     out << white;
   } else if (effect == "thermal_lag") {
     for (const auto& [input, cross] : output.inputs) {
-      if (input != "power") continue;
+      if (input != diagnostics.roles.power) continue;
       out << "cross-correlation with power peaks at " << value_text(cross.peak) << " at lag "
           << cross.peak_lag << " samples (white noise: |c| < " << value_text(cross.bound) << ")";
     }

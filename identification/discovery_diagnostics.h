@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "identification/fit_problem.h"
+#include "identification/measured_roles.h"
 #include "identification/residual_diagnostics.h"
 
 // Where a fitted base model disagrees with the validation window, read from its residuals
@@ -38,14 +39,17 @@ struct ResidualDiagnostics {
   double bound = 0.0;                            // 1.96 / sqrt(n): white noise's 95 % band
   std::vector<Feature> features;
   std::vector<OutputDiagnostics> outputs;
+  MeasuredRoles roles;  // the channels held as the power and the deflection
   // The correlation of the residual of `output` with the named feature, or NaN.
   double feature(std::size_t output, const std::string& name) const;
 };
 
 // The diagnostics of the model at `values` on `problem.validation`; `inputs` are the measured
-// channels the model replays. The temperature is the model's, where it publishes one.
+// channels the model replays, `roles` those that carry the power and the deflection. The
+// temperature is the model's, where it publishes one.
 ResidualDiagnostics diagnose(const FitProblem& problem, const std::vector<double>& values,
-                             const std::vector<std::string>& inputs);
+                             const std::vector<std::string>& inputs,
+                             const MeasuredRoles& roles = {});
 
 // The diagnostic that should give a named effect away, read from `diagnostics`: "corr(r,
 // last direction of motion) = 0.41 (white: |.| < 0.03); loop ~ f^0.05".

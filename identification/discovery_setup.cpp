@@ -1,15 +1,13 @@
 #include "identification/discovery_setup.h"
 
-#include <yaml-cpp/yaml.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <functional>
 #include <stdexcept>
 
 #include "identification/effect_catalogue.h"
+#include "identification/measured_roles.h"
 #include "identification/noise_floor.h"
 #include "kinds/standard_kinds.h"
 #include "sim/config/config_error.h"
@@ -23,23 +21,6 @@ std::string joined(const std::vector<std::string>& names) {
   std::string text;
   for (const auto& name : names) text += (text.empty() ? "" : ", ") + name;
   return text.empty() ? "none" : text;
-}
-
-// The channels the scenario's data signals replay ({type: data, channel: power}).
-std::vector<std::string> replayed_channels(const std::string& resolved_yaml) {
-  std::vector<std::string> channels;
-  std::function<void(const YAML::Node&)> walk = [&](const YAML::Node& node) {
-    if (node.IsMap()) {
-      if (node["type"] && node["type"].IsScalar() && node["type"].as<std::string>() == "data" &&
-          node["channel"] && node["channel"].IsScalar())
-        channels.push_back(node["channel"].as<std::string>());
-      for (const auto& entry : node) walk(entry.second);
-    } else if (node.IsSequence()) {
-      for (const auto& entry : node) walk(entry);
-    }
-  };
-  walk(YAML::Load(resolved_yaml));
-  return channels;
 }
 
 void check_inputs(const DiscoverRequest& request, const Scenario& model, const MeasuredData& data) {
@@ -362,6 +343,7 @@ DiscoverSetup setup_discovery(const DiscoverRequest& request,
   spec.problem.data = std::make_shared<const MeasuredData>(
       without_spikes(raw, spiky, request.inputs, setup.cleaned));
   spec.problem.parameters = read_parameters(request, *model, spec.problem.outputs);
+  setup.roles = measured_roles(*model, *spec.problem.data, spec.problem.outputs);
   spec.settings.starts = request.starts;
   spec.settings.refine = 2;
   spec.settings.seed = request.seed;

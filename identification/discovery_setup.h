@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "identification/fit_spec.h"
+#include "identification/measured_roles.h"
 
 namespace tcpmsim::fit {
 
@@ -49,6 +50,7 @@ struct DiscoverSetup {
   std::vector<std::size_t> cleaned;    // per output: spike samples replaced
   std::vector<double> floor;           // per output: the measurement's noise floor [unit]
   std::vector<bool> floor_given;       // per output: by --noise (else estimated from the data)
+  MeasuredRoles roles;                 // the measured channels of the power and the deflection
   std::shared_ptr<const UnitSystem> units;
 };
 

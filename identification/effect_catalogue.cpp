@@ -38,7 +38,7 @@ std::optional<double> parameter(const Context& context, const std::string& path)
 }
 
 BaseModel read_base(const Scenario& scenario, const Context& fitted, const MeasuredData& data,
-                    const std::vector<std::string>& outputs) {
+                    const std::vector<std::string>& outputs, const MeasuredRoles& roles) {
   const System& system = *scenario.system;
   BaseModel base;
   base.muscle = only_muscle(system);
@@ -60,11 +60,11 @@ BaseModel read_base(const Scenario& scenario, const Context& fitted, const Measu
     base.conductance = fitted.parameter(m + ".thermal_force.kappa_c") * base.heat_capacity;
     base.ambient = fitted.parameter(m + ".thermal_force.ambient_temperature");
   }
-  if (const auto* channel = data.find("deflection")) {
+  if (const auto* channel = data.find(roles.deflection)) {
     const auto [low, high] = std::minmax_element(channel->values.begin(), channel->values.end());
     if (*high > *low) base.deflection = std::make_pair(*low, *high);
   }
-  if (const auto* channel = data.find("power"); channel && !channel->values.empty())
+  if (const auto* channel = data.find(roles.power); channel && !channel->values.empty())
     base.power_peak = *std::max_element(channel->values.begin(), channel->values.end());
   base.lambda_path = m + ".inductance.lambda_T";
   if (auto lambda_0 = parameter(fitted, m + ".inductance.lambda_0"))
@@ -252,9 +252,13 @@ std::string missing_need(const BaseModel& base, const Scenario& scenario, Candid
       return "the muscle reports no temperature (give the reduced form's force_per_kelvin, or use "
              "the physical form)";
     case CandidateNeed::deflection:
-      return base.deflection ? "" : "the measurement has no deflection channel to place it in";
+      return base.deflection ? ""
+                             : "the measurement has no deflection channel to place it in (none "
+                               "replayed as a deflection, compared as one or named deflection)";
     case CandidateNeed::power:
-      return base.power_peak > 0.0 ? "" : "the measurement has no power channel";
+      return base.power_peak > 0.0 ? ""
+                                   : "the measurement has no power channel (none replayed as a "
+                                     "power or named power)";
     case CandidateNeed::coil_output:
       return base.coil_output ? "" : "no output of the coil (inductance or L*) is compared";
     case CandidateNeed::coil_temperature_term:
@@ -344,8 +348,9 @@ std::vector<std::string> effect_names() {
 }
 
 Candidates effect_candidates(const Scenario& scenario, const Context& fitted,
-                             const MeasuredData& data, const std::vector<std::string>& outputs) {
-  const BaseModel base = read_base(scenario, fitted, data, outputs);
+                             const MeasuredData& data, const std::vector<std::string>& outputs,
+                             const MeasuredRoles& roles) {
+  const BaseModel base = read_base(scenario, fitted, data, outputs, roles);
   Candidates result;
   std::vector<CandidateDeclaration> storage;
   for (const auto& declared : declared_families(standard_kinds(), storage)) {

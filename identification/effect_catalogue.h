@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "identification/fit_problem.h"
+#include "identification/measured_roles.h"
 #include "sim/context.h"
 #include "sim/io/measured_data.h"
 #include "sim/scenario.h"
@@ -52,10 +53,12 @@ struct Candidates {
 };
 
 // The catalogue for `base` (one muscle, reduced or physical thermal form), its scales taken
-// from the base model's parameters in `fitted`, the deflection range from `data`; `outputs` are
-// the model outputs compared (an inductance candidate needs one of the coil's). Effects the
-// muscle already has are kept: a candidate is appended to its `effects`.
+// from the base model's parameters in `fitted`, the deflection's range and the power's peak from
+// the channels of `data` that `roles` names; `outputs` are the model outputs compared (an
+// inductance candidate needs one of the coil's). Effects the muscle already has are kept: a
+// candidate is appended to its `effects`.
 Candidates effect_candidates(const Scenario& base, const Context& fitted, const MeasuredData& data,
-                             const std::vector<std::string>& outputs);
+                             const std::vector<std::string>& outputs,
+                             const MeasuredRoles& roles = {});
 
 }  // namespace tcpmsim::fit
