@@ -227,6 +227,56 @@ TEST_CASE("Errors in command-line overrides point at the --set") {
   }
 }
 
+TEST_CASE("A --set of null removes the key or element it names; one that names nothing fails") {
+  // A section removed: the muscle without its coil law runs, and publishes no inductance.
+  const Trace without_coil = simulate(kValid, {"muscle.inductance=null"});
+  CHECK(without_coil.channels.count("muscle/inductance_measure") == 0);
+  CHECK(simulate(kValid).channels.count("muscle/inductance_measure") == 1);
+  CHECK(bitwise_equal(without_coil["muscle/force"],
+                      simulate(replaced(kValid,
+                                        "  inductance: {quantity: measure, lambda_l: 2.81 mm, "
+                                        "lambda_x: 28.8 mm, lambda_0: 0.433}\n",
+                                        ""))["muscle/force"]));
+  // An element of a list removed: the effects that follow it move up.
+  const std::string two_effects = replaced(
+      kValid, "  resistance: 10 ohm\n",
+      "  resistance: 10 ohm\n  effects: [{type: maxwell_branch, stiffness: 3 N/m, time_constant: "
+      "20 s}, {type: hysteresis, stiffness: 50 N/m, force: 6 mN}]\n");
+  const std::string second_only = replaced(
+      kValid, "  resistance: 10 ohm\n",
+      "  resistance: 10 ohm\n  effects: [{type: hysteresis, stiffness: 50 N/m, force: 6 mN}]\n");
+  const std::string ramp =
+      "drive.power={type: ramp, start_time: 1 s, end_time: 8 s, from: 0 W, "
+      "to: 0.2 W}";
+  CHECK(bitwise_equal(simulate(two_effects, {"muscle.effects[0]=null", ramp})["muscle/force"],
+                      simulate(second_only, {ramp})["muscle/force"]));
+  CHECK_FALSE(bitwise_equal(simulate(two_effects, {ramp})["muscle/force"],
+                            simulate(second_only, {ramp})["muscle/force"]));
+  // A required key removed is missing at the --set that removed it; `~` is null too.
+  CHECK(error_of(kValid, {"muscle.mechanics.k1=~"}) ==
+        "command line (--set muscle.mechanics.k1=~): error: muscle.mechanics: missing required "
+        "key 'k1' (this --set removed it)");
+  // A path that names nothing is no silent no-op: a misspelt key gets a suggestion.
+  CHECK(error_of(kValid, {"muscle.inductanse=null"}) ==
+        "command line (--set muscle.inductanse=null): error: muscle.inductanse: there is nothing "
+        "at 'muscle.inductanse' to remove (did you mean 'inductance'?); --set KEY=null removes a "
+        "key or an element that is there");
+  CHECK(error_of(kValid, {"muscle.effects[0]=null"}) ==
+        "command line (--set muscle.effects[0]=null): error: muscle.effects[0]: there is nothing "
+        "at 'muscle.effects' to remove; --set KEY=null removes a key or an element that is there");
+  CHECK(error_of(two_effects, {"muscle.effects[2]=null"}) ==
+        "command line (--set muscle.effects[2]=null): error: muscle.effects[2]: index [2] does not "
+        "name an existing element");
+  // Null only when spelt out: a value of blanks is a missing value.
+  CHECK(error_of(kValid, {"muscle.mechanics.k1= "}) ==
+        "command line (--set muscle.mechanics.k1= ): error: muscle.mechanics.k1: expected a value "
+        "after '='");
+  // A value that is no mapping, read as one, says what it got, with its article.
+  CHECK(error_of(kValid, {"muscle.mechanics=[1, 2]"}) ==
+        "command line (--set muscle.mechanics=[1, 2]): error: muscle.mechanics: expected a mapping "
+        "with key 'k1', got a sequence");
+}
+
 TEST_CASE("A deflection that reaches the inductance law's singularity is rejected") {
   CHECK(error_of(replaced(kValid, "deflection: 20 mm}", "deflection: -30 mm}")) ==
         "test.yaml:18:38: error: load.deflection: the deflection reaches -0.030000 m, at or below "

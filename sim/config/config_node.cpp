@@ -113,11 +113,12 @@ SourceLocation locate(const ConfigDocument& document, const std::string& path,
   return {document.file, mark.line + 1, mark.column + 1, {}};
 }
 
+// What a node is, with its article: "a mapping", "an empty value".
 std::string node_kind(const YAML::Node& node) {
-  if (node.IsMap()) return "mapping";
-  if (node.IsSequence()) return "sequence";
-  if (node.IsNull()) return "empty value";
-  return "scalar";
+  if (node.IsMap()) return "a mapping";
+  if (node.IsSequence()) return "a sequence";
+  if (node.IsNull()) return "an empty value";
+  return "a scalar";
 }
 
 std::string trim(std::string_view text) {
@@ -219,6 +220,19 @@ std::string joined(const std::vector<std::string>& parts, std::size_t count) {
   return path;
 }
 
+// The element a path part "[2]" names in `node`, or throws.
+std::size_t element_of(const YAML::Node& node, const std::string& part,
+                       const SourceLocation& origin, const std::string& path) {
+  std::size_t element = 0;
+  const auto digits = std::string_view(part).substr(1, part.size() - 2);
+  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), element);
+  if (error != std::errc() || end != digits.data() + digits.size() || !node.IsSequence() ||
+      element >= node.size()) {
+    throw ConfigError(origin, path, "index " + part + " does not name an existing element");
+  }
+  return element;
+}
+
 // Sets `value` at parts[index...] below `node`; the mappings it adds on the way are listed in
 // `introduced` by their paths.
 void assign_at(YAML::Node node, const std::vector<std::string>& parts, std::size_t index,
@@ -227,14 +241,7 @@ void assign_at(YAML::Node node, const std::vector<std::string>& parts, std::size
   const std::string& part = parts[index];
   const bool last = index + 1 == parts.size();
   if (part.front() == '[') {
-    std::size_t element = 0;
-    const auto digits = std::string_view(part).substr(1, part.size() - 2);
-    const auto [end, error] =
-        std::from_chars(digits.data(), digits.data() + digits.size(), element);
-    if (error != std::errc() || end != digits.data() + digits.size() || !node.IsSequence() ||
-        element >= node.size()) {
-      throw ConfigError(origin, path, "index " + part + " does not name an existing element");
-    }
+    const std::size_t element = element_of(node, part, origin, path);
     if (last) {
       node[element] = value;
     } else {
@@ -243,7 +250,7 @@ void assign_at(YAML::Node node, const std::vector<std::string>& parts, std::size
     return;
   }
   if (!node.IsMap() && !node.IsNull()) {
-    throw ConfigError(origin, path, "cannot set '" + part + "' inside a " + node_kind(node));
+    throw ConfigError(origin, path, "cannot set '" + part + "' inside " + node_kind(node));
   }
   if (last) {
     node[part] = value;
@@ -254,6 +261,44 @@ void assign_at(YAML::Node node, const std::vector<std::string>& parts, std::size
     }
     assign_at(node[part], parts, index + 1, value, origin, path, introduced);
   }
+}
+
+// Removes the key or element at parts[index...] below `node` (--set path=null), or throws where
+// there is none: a misspelt path must not pass for a removal.
+void remove_at(YAML::Node node, const std::vector<std::string>& parts, std::size_t index,
+               const SourceLocation& origin, const std::string& path) {
+  const std::string& part = parts[index];
+  const bool last = index + 1 == parts.size();
+  std::string nothing = "there is nothing at '" + joined(parts, index + 1) + "' to remove";
+  if (node.IsMap() && part.front() != '[') {
+    std::vector<std::string> keys;
+    for (const auto& entry : node)
+      if (entry.first.IsScalar()) keys.push_back(entry.first.as<std::string>());
+    if (const std::string near = closest_match(part, keys); !near.empty())
+      nothing += " (did you mean '" + near + "'?)";
+  }
+  nothing += "; --set KEY=null removes a key or an element that is there";
+  if (part.front() == '[') {
+    const std::size_t element = element_of(node, part, origin, path);
+    if (last) {
+      node.remove(element);
+    } else {
+      remove_at(node[element], parts, index + 1, origin, path);
+    }
+    return;
+  }
+  if (!node.IsMap() || !node[part]) throw ConfigError(origin, path, nothing);
+  if (last) {
+    node.remove(part);
+  } else {
+    remove_at(node[part], parts, index + 1, origin, path);
+  }
+}
+
+// Whether an override's value asks for a removal: YAML's null spelt out ("null", "~").
+bool is_removal(const std::string& text, const YAML::Node& value) {
+  const std::string spelt = trim(text);
+  return value.IsNull() && (spelt == "null" || spelt == "Null" || spelt == "NULL" || spelt == "~");
 }
 
 }  // namespace
@@ -376,6 +421,13 @@ void apply_override(ConfigDocument& document, const std::string& assignment,
   } catch (const YAML::ParserException& error) {
     throw ConfigError(origin, path, "the value is not valid YAML: " + error.msg);
   }
+  const std::string text = assignment.substr(equals + 1);
+  if (is_removal(text, value)) {
+    remove_at(document.root, split_path(path), 0, origin, path);
+    document.overrides.push_back({path, assignment, value});
+    return;
+  }
+  if (value.IsNull()) throw ConfigError(origin, path, "expected a value after '='");
   std::vector<std::string> introduced;
   assign_at(document.root, split_path(path), 0, value, origin, path, introduced);
   for (const auto& added : introduced) document.introduced.try_emplace(added, assignment);
@@ -401,7 +453,7 @@ std::shared_ptr<ConfigDocument> parse_document(const std::string& text, const st
     const auto mark = document->root.Mark();
     throw ConfigError(
         {name, mark.line + 1, mark.column + 1, {}}, "",
-        "expected a mapping of sections at the top level, got a " + node_kind(document->root));
+        "expected a mapping of sections at the top level, got " + node_kind(document->root));
   }
   reject_duplicate_keys(document->root, name);
   reject_quote_open_to_end(document->root, text, name);
@@ -523,6 +575,14 @@ void ConfigNode::fail_missing(std::string_view key) const {
       }
     }
   }
+  // A --set KEY=null removed it: that --set is where to look.
+  const std::string removed = child_path(key);
+  for (auto assignment = document_->overrides.rbegin(); assignment != document_->overrides.rend();
+       ++assignment) {
+    if (assignment->value.IsNull() && assignment->path == removed)
+      throw ConfigError(command_line(*document_, assignment->text), path_,
+                        "missing required key '" + std::string(key) + "' (this --set removed it)");
+  }
   fail("missing required key '" + std::string(key) + "'");
 }
 
@@ -539,7 +599,7 @@ void ConfigNode::fail_empty_file(std::string_view key) const {
 
 ConfigNode ConfigNode::at(std::string_view key) const {
   if (!node_.IsMap())
-    fail("expected a mapping with key '" + std::string(key) + "', got a " + node_kind(node_));
+    fail("expected a mapping with key '" + std::string(key) + "', got " + node_kind(node_));
   if (!present(key)) fail_missing(key);
   const std::string path = child_path(key);
   document_->consumed.insert(path);
@@ -553,14 +613,14 @@ ConfigNode ConfigNode::at(std::string_view key) const {
 std::optional<ConfigNode> ConfigNode::find(std::string_view key) const {
   if (!node_.IsMap()) {
     if (node_.IsNull()) return std::nullopt;
-    fail("expected a mapping, got a " + node_kind(node_));
+    fail("expected a mapping, got " + node_kind(node_));
   }
   if (!has(key)) return std::nullopt;
   return at(key);
 }
 
 std::vector<ConfigNode> ConfigNode::elements() const {
-  if (!node_.IsSequence()) fail("expected a sequence (a YAML list), got a " + node_kind(node_));
+  if (!node_.IsSequence()) fail("expected a sequence (a YAML list), got " + node_kind(node_));
   std::vector<ConfigNode> result;
   for (std::size_t i = 0; i < node_.size(); ++i) {
     const std::string path = path_ + "[" + std::to_string(i) + "]";
@@ -572,7 +632,7 @@ std::vector<ConfigNode> ConfigNode::elements() const {
 }
 
 std::vector<std::pair<std::string, ConfigNode>> ConfigNode::entries() const {
-  if (!node_.IsMap()) fail("expected a mapping, got a " + node_kind(node_));
+  if (!node_.IsMap()) fail("expected a mapping, got " + node_kind(node_));
   std::vector<std::pair<std::string, ConfigNode>> result;
   for (const auto& entry : node_) {
     const std::string key = entry.first.as<std::string>();
@@ -586,7 +646,7 @@ double ConfigNode::as_quantity(std::string_view si_unit, const ValueCheck& check
   const bool dimensionless = si_unit == "1";
   const std::string wanted =
       dimensionless ? "a dimensionless number" : "a quantity in " + std::string(si_unit);
-  if (!node_.IsScalar()) fail("expected " + wanted + ", got a " + node_kind(node_));
+  if (!node_.IsScalar()) fail("expected " + wanted + ", got " + node_kind(node_));
   const std::string text = node_.Scalar();
   const std::string trimmed = trim(text);
   double value = 0.0;
@@ -638,7 +698,7 @@ double ConfigNode::as_number(const ValueCheck& check) const {
 
 long ConfigNode::as_integer(const ValueCheck& check) const {
   document_->log(path_, "integer", check);
-  if (!node_.IsScalar()) fail("expected an integer, got a " + node_kind(node_));
+  if (!node_.IsScalar()) fail("expected an integer, got " + node_kind(node_));
   const std::string text = trim(node_.Scalar());
   long value = 0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
@@ -655,15 +715,15 @@ bool ConfigNode::as_bool() const {
   document_->log(path_, "true or false");
   bool value = false;
   if (!node_.IsScalar() || !YAML::convert<bool>::decode(node_, value)) {
-    fail("expected true or false, got '" + (node_.IsScalar() ? node_.Scalar() : node_kind(node_)) +
-         "'");
+    fail("expected true or false, got " +
+         (node_.IsScalar() ? "'" + node_.Scalar() + "'" : node_kind(node_)));
   }
   return value;
 }
 
 std::string ConfigNode::as_text() const {
   document_->log(path_, "text");
-  if (!node_.IsScalar()) fail("expected a text value, got a " + node_kind(node_));
+  if (!node_.IsScalar()) fail("expected a text value, got " + node_kind(node_));
   return node_.Scalar();
 }
 
