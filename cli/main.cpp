@@ -769,6 +769,19 @@ int main(int argc, char** argv) {
       ->add_option("--bic-threshold", request.bic_threshold,
                    "BIC decrease a significant effect must exceed")
       ->check(CLI::NonNegativeNumber);
+  discover_command
+      ->add_option("--min-signature", request.min_signature,
+                   "Matched-filter z a significant effect's change to the outputs must reach "
+                   "against the base model's validation residual")
+      ->check(CLI::NonNegativeNumber);
+  discover_command
+      ->add_option("--alias-correlation", request.alias_correlation,
+                   "Significant candidates within the BIC threshold of the best whose validation "
+                   "changes correlate by at least this are aliases")
+      ->check(CLI::Range(0.0, 1.0));
+  discover_command->add_flag(
+      "--despike-all", request.despike_all,
+      "Replace spikes in every compared output, not only the coil's measure");
   discover_command->add_option("-j,--jobs", options.fit_jobs, "Candidates fitted at once (threads)")
       ->check(CLI::Range(1, 256));
   discover_command->add_flag(

@@ -220,6 +220,8 @@ std::string discovery_json(const Discovery& discovery) {
                       {"bic_threshold", request.bic_threshold},
                       {"min_gap_shrink", request.min_gap_shrink},
                       {"min_signature", request.min_signature},
+                      {"alias_correlation", request.alias_correlation},
+                      {"despike_all", request.despike_all},
                       {"floor_margin", request.floor_margin},
                       {"min_gap_closed", request.min_gap_closed},
                       {"max_order", request.max_order},

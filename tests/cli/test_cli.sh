@@ -256,6 +256,10 @@ expect 2 "discover --noise names an output it compares" -- "$tcpmsim" discover \
   --model "$discover/ch7_base.yaml" --data "$work/measured.csv" --inputs power,deflection \
   --outputs force --validate-from 400 --noise torque=2mN --out "$work/discover"
 contains "$work/err" "--noise torque=2mN: expected OUTPUT=VALUE UNIT for a compared output" "the --noise error says what it expects"
+expect 2 "discover --alias-correlation is a correlation" -- "$tcpmsim" discover \
+  --model "$discover/ch7_base.yaml" --data "$work/measured.csv" --inputs power,deflection \
+  --outputs force --validate-from 400 --alias-correlation 1.5 --out "$work/discover"
+contains "$work/err" "--alias-correlation: Value 1.5 not in range 0.000000 to 1.000000" "the range is stated"
 
 # analyze: any record's step metrics and frequency response; a request the record cannot serve
 # is a usage error naming what it has.

@@ -30,10 +30,13 @@ chmod +x "$work/installed/tcpmsim-plot"
 expect 10 "discover on data the base model fits to the noise says none (exit 10)" -- \
   "$work/installed/tcpmsim" discover --model "$discover/ch7_base.yaml" --data "$work/measured.csv" \
   --inputs power,deflection --outputs force --validate-from 400 --effects viscoelastic_relaxation \
-  --starts 2 --out "$work/discover_none"
+  --starts 2 --min-signature 3.5 --alias-correlation 0.95 --despike-all --out "$work/discover_none"
 contains "$work/out" "verdict: none (the base model fits to the noise floor)" "the verdict is printed"
 contains "$work/err" "warning: the plots of $work/discover_none could not be drawn" "a failed picture is a warning"
 contains "$work/discover_none/discovery.json" '"verdict_kind": "none"' "discovery.json carries the verdict's kind"
+contains "$work/discover_none/discovery.json" '"min_signature": 3.5' "the settings record the signature's bar"
+contains "$work/discover_none/discovery.json" '"alias_correlation": 0.95' "the settings record the aliases' correlation"
+contains "$work/discover_none/discovery.json" '"despike_all": true' "the settings record what was despiked"
 
 check_provenance
 echo "$failures failure(s)"
