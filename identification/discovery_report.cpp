@@ -248,11 +248,20 @@ std::string discovery_summary(const Discovery& discovery) {
         << outputs[k].unit << (discovery.setup.floor_given[k] ? " (given)" : " (from the data)")
         << (discovery.at_noise[k] ? ", base at it" : ", base above it")
         << (residual_white(discovery, k) ? "" : " (residual not white)");
-  out << "\n  " << std::left << std::setw(34) << "effect" << std::setw(12) << "delta BIC"
+  // The effect column fits the longest label ("temperature_dependent_stiffness [2]").
+  const auto label = [](const CandidateOutcome& candidate) {
+    return candidate.name + " [" + std::to_string(candidate.order) + "]";
+  };
+  std::size_t width = 34;
+  for (const auto& candidate : discovery.candidates)
+    width = std::max(width, label(candidate).size() + 2);
+  for (const auto& skipped : discovery.skipped) width = std::max(width, skipped.name.size() + 2);
+  const int column = static_cast<int>(width);
+  out << "\n  " << std::left << std::setw(column) << "effect" << std::setw(12) << "delta BIC"
       << std::setw(12) << "gap shrink" << std::setw(13) << "signature z"
       << "significant\n";
   for (const auto& candidate : discovery.candidates) {
-    out << "  " << std::setw(34) << (candidate.name + " [" + std::to_string(candidate.order) + "]");
+    out << "  " << std::setw(column) << label(candidate);
     if (candidate.status != "fitted") {
       out << candidate.status << ": " << candidate.reason << "\n";
       continue;
@@ -263,7 +272,7 @@ std::string discovery_summary(const Discovery& discovery) {
         << (candidate.superseded ? " (another member of its family does better)" : "") << "\n";
   }
   for (const auto& skipped : discovery.skipped)
-    out << "  " << std::setw(34) << skipped.name << "skipped: " << skipped.reason << "\n";
+    out << "  " << std::setw(column) << skipped.name << "skipped: " << skipped.reason << "\n";
   out << "verdict: " << discovery.verdict;
   if (const auto* verdict = verdict_of(discovery))
     out << " (" << verdict->member << "; validation gap shrinks by "
