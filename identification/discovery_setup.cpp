@@ -134,6 +134,12 @@ std::vector<FitParameter> read_parameters(const DiscoverRequest& request, const 
       throw UsageError("--parameters: '" + path + "' is derived (" + info.derived_from +
                        "); fit what it is derived from");
     const double value = context.parameter(path);
+    if (value == 0.0 && request.parameters.empty())
+      throw UsageError("--parameters: '" + path +
+                       "', one of the parameters discover fits by default (each within a factor "
+                       "of five of the model's value), is 0 in the model; give it a starting "
+                       "value (--set " +
+                       path + "=VALUE UNIT) or name the parameters to fit (--parameters)");
     if (value == 0.0)
       throw UsageError("--parameters: '" + path +
                        "' is 0 in the model; give it a starting value (--set)");

@@ -256,6 +256,11 @@ expect 2 "discover --noise names an output it compares" -- "$tcpmsim" discover \
   --model "$discover/ch7_base.yaml" --data "$work/measured.csv" --inputs power,deflection \
   --outputs force --validate-from 400 --noise torque=2mN --out "$work/discover"
 contains "$work/err" "--noise torque=2mN: expected OUTPUT=VALUE UNIT for a compared output" "the --noise error says what it expects"
+expect 2 "discover's default parameters need a value to scale their bounds from" -- "$tcpmsim" discover \
+  --model "$discover/ch7_base.yaml" --data "$work/measured.csv" --inputs power,deflection \
+  --outputs force --validate-from 400 --set muscle.mechanics.force_offset=0N --out "$work/discover"
+contains "$work/err" "one of the parameters discover fits by default" "the message says the parameter was discover's choice"
+contains "$work/err" "(--set muscle.mechanics.force_offset=VALUE UNIT) or name the parameters to fit (--parameters)" "and how to go on"
 expect 2 "discover --alias-correlation is a correlation" -- "$tcpmsim" discover \
   --model "$discover/ch7_base.yaml" --data "$work/measured.csv" --inputs power,deflection \
   --outputs force --validate-from 400 --alias-correlation 1.5 --out "$work/discover"
