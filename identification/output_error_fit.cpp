@@ -273,6 +273,11 @@ Refined refine(const FitProblem& problem, const Residuals& residuals, const FitS
   options.line_search_interpolation_type = ceres::BISECTION;
   ceres::Solver::Summary summary;
   ceres::Solve(options, &ceres_problem, &summary);
+  // No usable solution (the first evaluation failed): no result, however Ceres fills its cost
+  // (-1 when it never evaluated), so that another start wins or the fit fails.
+  if (summary.termination_type == ceres::FAILURE)
+    return {theta, std::numeric_limits<double>::infinity(),
+            static_cast<int>(summary.iterations.size()), summary.message, false};
   return {theta, summary.final_cost, static_cast<int>(summary.iterations.size()),
           summary.message + " (" + std::to_string(summary.num_residual_evaluations) +
               " residual and " + std::to_string(summary.num_jacobian_evaluations) +
@@ -449,6 +454,11 @@ WindowScore score_window(const FitProblem& problem, const std::vector<double>& v
 }
 
 FitResult fit_model(const FitProblem& problem, const FitSettings& settings) {
+  if (settings.max_iterations < 0 || settings.starts < 0 || settings.refine < 0)
+    throw std::invalid_argument("fit settings: max_iterations " +
+                                std::to_string(settings.max_iterations) + ", starts " +
+                                std::to_string(settings.starts) + ", refine " +
+                                std::to_string(settings.refine) + ": none may be negative");
   check_windows(problem);
   const auto [sensitivities, gradient] = choose_gradient(problem, settings.gradient);
   const Residuals residuals(problem);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <numeric>
 
 #include "identification/bench_measurement.h"
@@ -212,6 +213,24 @@ TEST_CASE(
     for (double value : direct) largest = std::max(largest, std::abs(value));
     INFO(paths[j]);
     CHECK(max_abs_difference(iterated, direct) <= 1e-5 * largest);
+  }
+}
+
+TEST_CASE("Fit settings that no fit can follow are refused before any simulation") {
+  // A negative iteration limit once reached Ceres, which refused it and left a cost of -1 that
+  // won the multistart (discover's retry from drawn starts).
+  const std::string data = protocol_measurement(1e-3, 3);
+  const fit::FitProblem problem = base_problem(data, {"muscle.mechanics.k1"});
+  for (const auto& [name, change] :
+       std::vector<std::pair<std::string, std::function<void(fit::FitSettings&)>>>{
+           {"max_iterations", [](fit::FitSettings& s) { s.max_iterations = -14; }},
+           {"starts", [](fit::FitSettings& s) { s.starts = -1; }},
+           {"refine", [](fit::FitSettings& s) { s.refine = -1; }}}) {
+    INFO(name);
+    fit::FitSettings settings;
+    change(settings);
+    CHECK_THROWS_WITH(fit::fit_model(problem, settings),
+                      Catch::Contains(name) && Catch::Contains("none may be negative"));
   }
 }
 
