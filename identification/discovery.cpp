@@ -9,6 +9,7 @@
 #include <numeric>
 
 #include "identification/candidate_aliases.h"
+#include "identification/discovery_diagnostics.h"
 #include "identification/discovery_setup.h"
 #include "identification/model_order.h"
 #include "identification/residual_diagnostics.h"
@@ -153,15 +154,20 @@ void count_effort(FitResult& result, const FitResult& earlier) {
   result.iterations += earlier.iterations;
 }
 
-// The refit of `problem` from its best drawn start, as a probe of a few iterations first: only
-// if that has gone below `to_beat` (the refit from the nested start) is it refined on, to the
-// iterations `settings` allow. Most candidates the data do not hold never get there, and
-// refining each to the iteration limit was most of the retry's cost.
+// The refit of `problem` from each of its drawn starts, as probes of a few iterations: only if
+// the best of them has gone below `to_beat` (the refit from the nested start) is it refined on,
+// to the iterations `settings` allow. Most candidates the data do not hold never get there, and
+// refining each to the iteration limit was most of the retry's cost. Every draw, not the one
+// whose starting cost is lowest: where the base fit has absorbed the effect (a fan taken into a
+// higher hA), the draw nearest zero size falls back to zero, and one further out gets there (a
+// hanging mass under a ratchet and a fan: the fan's refit stayed at zero from the lowest draw
+// and lowered the BIC by 65 from the others).
 FitResult refit_from_drawn_start(const FitProblem& problem, const FitSettings& settings,
                                  double to_beat) {
   constexpr int kProbeIterations = 10;
   FitSettings probe = settings;
   probe.drawn_starts_only = true;
+  probe.refine = settings.starts;
   probe.max_iterations = std::min(settings.max_iterations, kProbeIterations);
   FitResult probed = fit_model(problem, probe);
   if (probed.converged || probed.cost >= to_beat || probe.max_iterations >= settings.max_iterations)
@@ -169,7 +175,8 @@ FitResult refit_from_drawn_start(const FitProblem& problem, const FitSettings& s
   FitSettings onward = settings;
   onward.starts = 0;
   onward.start = values_of(probed);
-  onward.max_iterations = settings.max_iterations - probed.iterations;
+  // The iterations left to the probe that won (`probed` counts every probe's).
+  onward.max_iterations = settings.max_iterations - probe.max_iterations;
   FitResult refined = fit_model(problem, onward);
   count_effort(refined, probed);
   refined.start_cost = probed.start_cost;
@@ -179,9 +186,9 @@ FitResult refit_from_drawn_start(const FitProblem& problem, const FitSettings& s
 
 // A refit from the nested start that never left it: at zero size an effect's shape parameters
 // (a knee's position and sharpness, a time constant) change nothing, so their gradient is zero
-// and Levenberg-Marquardt grows the size, if at all, in the shape it started with. The best
-// drawn start is then refined too, and the lower of the two kept. "Never left": the cost fell by
-// less than half a unit (one unit of chi-squared), far below any significant BIC change. Only
+// and Levenberg-Marquardt grows the size, if at all, in the shape it started with. The drawn
+// starts are then refined too, and the lower of the two results kept. "Never left": the cost fell
+// by less than half a unit (one unit of chi-squared), far below any significant BIC change. Only
 // where the base model misses some output by more than the noise (`gap`): where it fits every
 // output to the noise, there is no gap for the effect to close, and on such data every
 // candidate finds nothing and would try again (1.6 times the simulations).
@@ -207,7 +214,7 @@ void retry_from_drawn_start(CandidateOutcome& outcome, const FitSettings& settin
 }
 
 // The refit of a candidate whose problem and settings (its nested start first) are in
-// `outcome.spec`, from the best multistart point; again from the best drawn start when that was
+// `outcome.spec`, from the best multistart point; again from its drawn starts when that was
 // the nested start, the fit never left it and the base model leaves a `gap`; again from the
 // nested start alone when the fit ended above it.
 void refit_nested(CandidateOutcome& outcome, const FitSettings& settings, bool gap) {
@@ -471,8 +478,15 @@ Discovery discover(const DiscoverSetup& setup) {
   for (const auto& estimate : base.estimates) fitted.set_parameter(estimate.path, estimate.value);
   std::vector<std::string> model_outputs;
   for (const auto& output : spec.problem.outputs) model_outputs.push_back(output.output);
-  Candidates catalogue = effect_candidates(*spec.problem.model, fitted, *spec.problem.data,
-                                           model_outputs, setup.roles);
+  // How warm the fitted base model runs: a ratchet's threshold starts where it is crossed.
+  CatalogueContext context{setup.roles, 0.0};
+  const auto& times = spec.problem.data->time();
+  const std::vector<double> temperature =
+      model_temperature(spec.problem, values_of(base), {times.front(), times.back()});
+  if (!temperature.empty())
+    context.temperature_peak = *std::max_element(temperature.begin(), temperature.end());
+  Candidates catalogue =
+      effect_candidates(*spec.problem.model, fitted, *spec.problem.data, model_outputs, context);
   const auto& wanted = setup.request.effects;
   std::vector<EffectCandidate> tried;
   const int max_order = setup.request.max_order;

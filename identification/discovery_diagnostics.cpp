@@ -49,16 +49,6 @@ std::vector<double> rate_of(const std::vector<double>& time, const std::vector<d
   return rate;
 }
 
-// The model's temperature at the samples of `window`, or empty where it publishes none.
-std::vector<double> model_temperature(const FitProblem& problem, const std::vector<double>& values,
-                                      const TimeWindow& window) {
-  const std::string output = only_muscle(*problem.model->system) + ".temperature";
-  if (problem.model->system->signal_index(output) < 0) return {};
-  FitProblem probe = problem;
-  probe.outputs = {{"temperature", output, "K", 1.0}};
-  return simulate_outputs(probe, values, window)[0];
-}
-
 std::vector<Feature> features(const FitProblem& problem, const std::vector<double>& values,
                               const std::vector<double>& time, std::size_t first, std::size_t last,
                               const MeasuredRoles& roles) {
@@ -109,6 +99,15 @@ std::string value_text(double value) {
 }
 
 }  // namespace
+
+std::vector<double> model_temperature(const FitProblem& problem, const std::vector<double>& values,
+                                      const TimeWindow& window) {
+  const std::string output = only_muscle(*problem.model->system) + ".temperature";
+  if (problem.model->system->signal_index(output) < 0) return {};
+  FitProblem probe = problem;
+  probe.outputs = {{"temperature", output, "K", 1.0}};
+  return simulate_outputs(probe, values, window)[0];
+}
 
 double ResidualDiagnostics::feature(std::size_t output, const std::string& name) const {
   for (const auto& [feature_name, value] : outputs[output].features) {

@@ -44,6 +44,11 @@ struct ResidualDiagnostics {
   double feature(std::size_t output, const std::string& name) const;
 };
 
+// The model's temperature at `values`, at the samples of `window`; empty where its muscle
+// publishes none.
+std::vector<double> model_temperature(const FitProblem& problem, const std::vector<double>& values,
+                                      const TimeWindow& window);
+
 // The diagnostics of the model at `values` on `problem.validation`; `inputs` are the measured
 // channels the model replays, `roles` those that carry the power and the deflection. The
 // temperature is the model's, where it publishes one.

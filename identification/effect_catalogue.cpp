@@ -26,6 +26,7 @@ struct BaseModel {
   double heat_capacity = 0.0, conductance = 0.0, ambient = 0.0;  // C, hA, T_amb
   std::optional<std::pair<double, double>> deflection;           // measured range
   double power_peak = 0.0;                                       // the measured power's largest
+  double temperature_peak = 0.0;                                 // the model's warmest, or 0
   std::string lambda_path;                                       // <muscle>.inductance.lambda_T
   double lambda_scale = 0.0;                                     // |lambda_0|
   YAML::Node effects;                                            // the muscle's own, if any
@@ -38,7 +39,8 @@ std::optional<double> parameter(const Context& context, const std::string& path)
 }
 
 BaseModel read_base(const Scenario& scenario, const Context& fitted, const MeasuredData& data,
-                    const std::vector<std::string>& outputs, const MeasuredRoles& roles) {
+                    const std::vector<std::string>& outputs, const CatalogueContext& context) {
+  const MeasuredRoles& roles = context.roles;
   const System& system = *scenario.system;
   BaseModel base;
   base.muscle = only_muscle(system);
@@ -66,6 +68,7 @@ BaseModel read_base(const Scenario& scenario, const Context& fitted, const Measu
   }
   if (const auto* channel = data.find(roles.power); channel && !channel->values.empty())
     base.power_peak = *std::max_element(channel->values.begin(), channel->values.end());
+  base.temperature_peak = context.temperature_peak;
   base.lambda_path = m + ".inductance.lambda_T";
   if (auto lambda_0 = parameter(fitted, m + ".inductance.lambda_0"))
     base.lambda_scale = std::abs(*lambda_0);
@@ -209,6 +212,17 @@ std::vector<DeclaredFamily> declared_families(const KindRegistry& kinds,
   return families;
 }
 
+// Where a threshold on the temperature starts: 10 K above ambient, unless the base model never
+// gets 20 K warmer, where a threshold 10 K up would never be crossed (a ratchet at its nested
+// start would then have no gradient in its rate): then halfway up what it reaches.
+double warm(const BaseModel& base) {
+  constexpr double kUsualStart = 10.0;  // [K] above ambient
+  const double rise = base.temperature_peak - base.ambient;
+  if (base.temperature_peak > 0.0 && rise > 0.0 && rise < 2 * kUsualStart)
+    return base.ambient + 0.5 * rise;
+  return base.ambient + kUsualStart;
+}
+
 double scale_of(const BaseModel& base, CandidateScale scale) {
   const double range = base.deflection ? base.deflection->second - base.deflection->first : 0.02;
   switch (scale) {
@@ -236,6 +250,8 @@ double scale_of(const BaseModel& base, CandidateScale scale) {
       return base.power_peak;
     case CandidateScale::coil_scale:
       return base.lambda_scale > 0.0 ? base.lambda_scale : 1.0;
+    case CandidateScale::warm:
+      return warm(base);
   }
   return 1.0;
 }
@@ -349,8 +365,8 @@ std::vector<std::string> effect_names() {
 
 Candidates effect_candidates(const Scenario& scenario, const Context& fitted,
                              const MeasuredData& data, const std::vector<std::string>& outputs,
-                             const MeasuredRoles& roles) {
-  const BaseModel base = read_base(scenario, fitted, data, outputs, roles);
+                             const CatalogueContext& context) {
+  const BaseModel base = read_base(scenario, fitted, data, outputs, context);
   Candidates result;
   std::vector<CandidateDeclaration> storage;
   for (const auto& declared : declared_families(standard_kinds(), storage)) {

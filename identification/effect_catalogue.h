@@ -52,13 +52,20 @@ struct Candidates {
   std::vector<SkippedCandidate> skipped;
 };
 
+// What the catalogue reads beyond the base model's parameters: which measured channels carry
+// the power and the deflection, and how warm the fitted base model runs over the data.
+struct CatalogueContext {
+  MeasuredRoles roles;
+  double temperature_peak = 0.0;  // the base model's warmest [K]; 0: not known
+};
+
 // The catalogue for `base` (one muscle, reduced or physical thermal form), its scales taken
 // from the base model's parameters in `fitted`, the deflection's range and the power's peak from
-// the channels of `data` that `roles` names; `outputs` are the model outputs compared (an
-// inductance candidate needs one of the coil's). Effects the muscle already has are kept: a
+// the channels of `data` that `context.roles` names; `outputs` are the model outputs compared
+// (an inductance candidate needs one of the coil's). Effects the muscle already has are kept: a
 // candidate is appended to its `effects`.
 Candidates effect_candidates(const Scenario& base, const Context& fitted, const MeasuredData& data,
                              const std::vector<std::string>& outputs,
-                             const MeasuredRoles& roles = {});
+                             const CatalogueContext& context = {});
 
 }  // namespace tcpmsim::fit

@@ -123,6 +123,31 @@ TEST_CASE("Candidates that cannot attach to a base model are skipped with the re
   }
 }
 
+TEST_CASE("A ratchet's threshold starts where the base model's temperature crosses it") {
+  // At zero rate a ratchet whose threshold the model never reaches changes nothing for any
+  // rate: the fit has no gradient to leave zero size by. Its threshold starts 10 K above
+  // ambient, or halfway up a base model that never gets 20 K warmer.
+  const std::string data_path = protocol_record("60 s");
+  const Scenario base = base_model(data_path);
+  const MeasuredData data = read_measured_data(data_path, *shared_units());
+  const double ambient = base.make_context().parameter("muscle.thermal_force.ambient_temperature");
+  const auto threshold_start = [&](double peak) {
+    const auto candidates = fit::effect_candidates(base, base.make_context(), data, {"load.force"},
+                                                   {fit::MeasuredRoles{}, peak});
+    for (const auto& candidate : candidates.candidates) {
+      if (candidate.name != "ratchet") continue;
+      for (std::size_t j = 0; j < candidate.parameters.size(); ++j)
+        if (candidate.parameters[j].path.ends_with(".threshold")) return candidate.nested[j];
+    }
+    FAIL("no ratchet threshold among the candidates");
+    return 0.0;
+  };
+  CHECK(threshold_start(0.0) == ambient + 10.0);  // not known: as before
+  CHECK(threshold_start(ambient + 40.0) == ambient + 10.0);
+  CHECK(threshold_start(ambient + 6.0) == Approx(ambient + 3.0).epsilon(1e-15));
+  CHECK(threshold_start(ambient + 19.0) == Approx(ambient + 9.5).epsilon(1e-15));
+}
+
 TEST_CASE("Every effect kind is a discover candidate, or is excluded with the reason") {
   // Each effect kind declares with its registration how discover tries it (its families) or
   // why it does not; a kind added without either would never be tried. A declared family's

@@ -381,9 +381,18 @@ TEST_CASE("A heating-driven convection raises hA by G_P P / P_ref while the heat
   CHECK(lagged["muscle/temperature"][spinning] > trace["muscle/temperature"][spinning] + 0.05);
 }
 
+namespace {
+// The fan's switch, off at rest: s(P) = (sigma(P) - sigma(0)) / (1 - sigma(0)), sigma the
+// logistic 1 / (1 + exp(-(P - P_on) / w)).
+double fan_switch(double power, double on, double width) {
+  const auto sigma = [&](double p) { return 1.0 / (1.0 + std::exp(-(p - on) / width)); };
+  return (sigma(power) - sigma(0.0)) / (1.0 - sigma(0.0));
+}
+}  // namespace
+
 TEST_CASE("A fan switched on above a power raises hA by G_P s(P), s a smooth switch at P_on") {
   // Steady states of one node under two powers, one below the switch and one above it:
-  // T - T_amb = P / (hA + G_P s(P)), s(P) = 1 / (1 + exp(-(P - P_on) / w)).
+  // T - T_amb = P / (hA + G_P s(P)).
   const double gain = 0.04, on = 1.6, width = 0.15;
   const Trace trace = simulate(
       physical_muscle_yaml(),
@@ -392,8 +401,7 @@ TEST_CASE("A fan switched on above a power raises hA by G_P s(P), s a smooth swi
        "muscle.effects=[{type: heating_convection, name: fan, conductance: 0.04 W/K, "
        "switch_power: 1.6 W, switch_width: 0.15 W}]"});
   const auto steady = [&](double power) {
-    const double switched = 1.0 / (1.0 + std::exp(-(power - on) / width));
-    return power / (kConductance + gain * switched);
+    return power / (kConductance + gain * fan_switch(power, on, width));
   };
   CHECK(trace["muscle/temperature"][3990] - kAmbient == Approx(steady(1.0)).epsilon(1e-6));
   CHECK(trace["muscle/temperature"].back() - kAmbient == Approx(steady(2.5)).epsilon(1e-6));
@@ -409,15 +417,36 @@ TEST_CASE("A fan switched on above a power raises hA by G_P s(P), s a smooth swi
                              "switch_power and switch_width"));
 }
 
+TEST_CASE("A switched fan is off at rest, however wide its switch") {
+  // A switch so wide that the logistic alone would run at sigma(0) = 0.35 with the heater off.
+  // After the heating stops the node cools through hA alone: T - T_amb = dT_0 exp(-hA t / C).
+  const Trace trace = simulate(
+      physical_muscle_yaml(),
+      {"drive.power={type: steps, initial: 0 W, times: [10 s, 300 s], values: [2.5 W, 0 W]}",
+       "scenario.duration=400 s",
+       "muscle.effects=[{type: heating_convection, name: fan, conductance: 0.04 W/K, "
+       "switch_power: 0.3 W, switch_width: 0.5 W}]"});
+  CHECK(fan_switch(0.0, 0.3, 0.5) == 0.0);
+  CHECK(fan_switch(1e3, 0.3, 0.5) == Approx(1.0).epsilon(1e-12));
+  const std::size_t off = 3000, later = 3500;  // 300 s and 350 s at 10 Hz
+  REQUIRE(trace.time[off] == Approx(300.0));
+  const double rise_off = trace["muscle/temperature"][off] - kAmbient;
+  const double rise_later = trace["muscle/temperature"][later] - kAmbient;
+  // Within the solver's tolerance on a 50 K rise, as the sibling tests bound it; the logistic
+  // alone would have cooled it to 0.06 K, not 0.19 K.
+  CHECK(std::abs(rise_later - rise_off * std::exp(-kConductance / kCapacity * 50.0)) <=
+        allowed(1e-8, 50.0) + 50.0 * 1e-6);
+  // Before the heating starts it takes nothing either: the node stays at ambient.
+  CHECK(trace["muscle/temperature"][50] == Approx(kAmbient).epsilon(1e-12));
+}
+
 TEST_CASE("A switched fan driven through a lag follows the switch of the lagged power") {
   // Power step P at t_s = 10 s into one node with a fan switched at P_on through the lag tau:
   //   C dT/dt = P - hA (T - T_amb) - G_P s(P_b) (T - T_amb),   tau dP_b/dt = P - P_b,
   // P_b = 0 at the start. The reference is the classical Runge-Kutta method with 1 ms steps,
   // whose error (of order dt^4) is far below the solver's.
   const double gain = 0.04, on = 1.6, width = 0.15, tau = 20.0, power = 2.5, step = 10.0;
-  const auto switched = [&](double lagged) {
-    return 1.0 / (1.0 + std::exp(-(lagged - on) / width));
-  };
+  const auto switched = [&](double lagged) { return fan_switch(lagged, on, width); };
   const auto slope = [&](const Eigen::Vector2d& y) {  // y = (T - T_amb, P_b) after the step
     return Eigen::Vector2d((power - (kConductance + gain * switched(y(1))) * y(0)) / kCapacity,
                            (power - y(1)) / tau);

@@ -103,7 +103,7 @@ TEST_CASE("The catalogue's families and scales do not depend on what the channel
   const Measurement named = measurement(false);
   const fit::MeasuredRoles roles = fit::measured_roles(renamed.model, renamed.data, {});
   const auto by_role = fit::effect_candidates(renamed.model, renamed.model.make_context(),
-                                              renamed.data, {"load.force"}, roles);
+                                              renamed.data, {"load.force"}, {roles, 0.0});
   const auto by_name =
       fit::effect_candidates(named.model, named.model.make_context(), named.data, {"load.force"});
   REQUIRE(by_role.skipped.size() == 1);

@@ -24,6 +24,8 @@ enum class CandidateScale {
   deflection_high,  // and largest [m]
   deflection_sum,   // their sum [m]
   power_peak,       // the measured power's largest [W]
+  warm,             // where a heated threshold starts: ambient + 10 K, or half the base model's
+                    // largest rise above ambient when that is less than 20 K [K]
   coil_scale,       // |lambda_0| of the coil law (1 if zero) [its unit]
 };
 

@@ -378,8 +378,8 @@ CandidateDeclaration ratchet_candidates() {
                   "dF/dt = -g max(0, T - T_th), kept on cooling",
                   {free_key("rate", "N/(K*s)", fixed_value(0.0), fixed_value(0.0),
                             scaled(1.0, S::k1_range, 0.0, 1000.0)),
-                   free_key("threshold", "K", scaled(1.0, S::ambient, 10.0),
-                            scaled(1.0, S::ambient), scaled(1.0, S::ambient, 100.0))});
+                   free_key("threshold", "K", scaled(1.0, S::warm), scaled(1.0, S::ambient),
+                            scaled(1.0, S::ambient, 100.0))});
 }
 
 CandidateDeclaration heating_convection_candidates() {
@@ -548,8 +548,9 @@ void register_effect_kinds(KindRegistry& kinds) {
              "heating_convection",
              "a heat-transfer coefficient that rises with the heating input (a fan or heat "
              "gun running with the heater): Q = G_P (P_b / P_ref) (T - T_amb), or switched on "
-             "above a power, Q = G_P s(P_b) (T - T_amb) with s(P) = 1 / (1 + exp(-(P - P_on) / "
-             "w)); the boost P_b following the input P with time constant tau (0: at once)",
+             "above a power, Q = G_P s(P_b) (T - T_amb) with s(P) = (sigma(P) - sigma(0)) / (1 - "
+             "sigma(0)), sigma(P) = 1 / (1 + exp(-(P - P_on) / w)): off at rest; the boost P_b "
+             "following the input P with time constant tau (0: at once)",
              {{example_muscle_scenario("  effects:\n    - {type: heating_convection, name: fan, "
                                        "conductance: 0.02 W/K, reference_power: 3 W}\n",
                                        ""),

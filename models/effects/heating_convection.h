@@ -13,11 +13,13 @@ namespace tcpmsim {
 //     Q = G_P (P / P_ref) (T - T_amb),
 // beside the node's own hA (T - T_amb): at P = P_ref the conductance is hA + G_P, at rest hA.
 // A fan switched by the heating (a relay, a thermostat) runs above a power P_on instead:
-//     Q = G_P s(P) (T - T_amb),   s(P) = 1 / (1 + exp(-(P - P_on) / w)),
-// a smooth switch of width w (given by switch_power and switch_width, not reference_power).
-// The switch is not quite off at rest: s(0) = 1 / (1 + exp(P_on / w)), 0.7 % at P_on = 5 w,
-// but up to 0.47 within the widths discover tries (w up to half the peak power, P_on down to a
-// twentieth); that share at rest is a constant addition to hA, which the base fit can take.
+//     Q = G_P s(P) (T - T_amb),   s(P) = (sigma(P) - sigma(0)) / (1 - sigma(0)),
+//     sigma(P) = 1 / (1 + exp(-(P - P_on) / w)),
+// a smooth switch of width w (given by switch_power and switch_width, not reference_power),
+// off at rest and fully on at high power whatever its width: the logistic sigma alone is not
+// off at rest, sigma(0) = 1 / (1 + exp(P_on / w)), 0.7 % at P_on = 5 w but up to 0.47 within
+// the widths discover tries (w up to half the peak power, P_on down to a twentieth), a share of
+// G_P added to hA whenever the heater is off.
 // A flow that spins up and down follows the input late: with a time constant tau the boost is
 // driven by the lagged input P_b, tau dP_b/dt = P - P_b (P_b = P at the start; tau = 0: at
 // once). With G_P = 0 it takes nothing (discover's nested start).
@@ -30,10 +32,16 @@ struct HeatingConvectionParameters {
 };
 
 namespace heating_convection {
-// s(P): P / P_ref, or the switch's 1 / (1 + exp(-(P - P_on) / w)).
+// The logistic switch sigma(P) = 1 / (1 + exp(-(P - P_on) / w)).
+inline double logistic(const HeatingConvectionParameters& p, double power) {
+  return 0.5 * (1.0 + std::tanh(0.5 * (power - p.switch_power) / p.switch_width));
+}
+// s(P): P / P_ref, or the switch (sigma(P) - sigma(0)) / (1 - sigma(0)), 0 at rest.
 inline double boost(const HeatingConvectionParameters& p, double power) {
-  if (p.switch_width > 0.0)
-    return 0.5 * (1.0 + std::tanh(0.5 * (power - p.switch_power) / p.switch_width));
+  if (p.switch_width > 0.0) {
+    const double at_rest = logistic(p, 0.0);  // below 1/2: P_on >= 0
+    return (logistic(p, power) - at_rest) / (1.0 - at_rest);
+  }
   return power / p.reference_power;
 }
 inline double heat_loss(const HeatingConvectionParameters& p, double power, double difference) {
