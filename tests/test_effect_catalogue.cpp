@@ -11,6 +11,7 @@
 #include "models/effects/effect_candidates.h"
 #include "models/muscle.h"
 #include "sim/run.h"
+#include "tests/support/discover_data.h"
 #include "tests/support/test_support.h"
 
 using namespace tcpmsim;
@@ -22,12 +23,6 @@ Scenario base_model(const std::string& data, std::vector<std::string> overrides 
   overrides.push_back("measurement.file=" + data);
   overrides.push_back("scenario.duration=60 s");
   return load_scenario(source_path("configs/discover/ch7_base.yaml"), overrides, shared_units());
-}
-
-std::vector<std::string> names_of(const fit::Candidates& candidates) {
-  std::vector<std::string> names;
-  for (const auto& candidate : candidates.candidates) names.push_back(candidate.name);
-  return names;
 }
 
 }  // namespace
@@ -50,7 +45,7 @@ TEST_CASE(
   const auto candidates =
       fit::effect_candidates(base, fitted, data, {"load.force", "muscle.inductance_measure"});
   CHECK(candidates.skipped.empty());
-  auto names = names_of(candidates);
+  auto names = candidate_names(candidates);
   std::sort(names.begin(), names.end());
   names.erase(std::unique(names.begin(), names.end()), names.end());
   auto expected = fit::effect_names();

@@ -10,6 +10,7 @@
 #include "identification/discovery_diagnostics.h"
 #include "identification/effect_catalogue.h"
 #include "identification/measured_roles.h"
+#include "tests/support/discover_data.h"
 #include "tests/support/test_support.h"
 
 using namespace tcpmsim;
@@ -71,12 +72,6 @@ const fit::EffectCandidate* first_of(const fit::Candidates& candidates, const st
   return nullptr;
 }
 
-std::vector<std::string> names_of(const fit::Candidates& candidates) {
-  std::vector<std::string> names;
-  for (const auto& candidate : candidates.candidates) names.push_back(candidate.name);
-  return names;
-}
-
 }  // namespace
 
 TEST_CASE("A measured quantity is the channel replayed as it, else compared as it, else named so") {
@@ -108,7 +103,7 @@ TEST_CASE("The catalogue's families and scales do not depend on what the channel
       fit::effect_candidates(named.model, named.model.make_context(), named.data, {"load.force"});
   REQUIRE(by_role.skipped.size() == 1);
   CHECK(by_role.skipped[0].name == "inductance_temperature");
-  CHECK(names_of(by_role) == names_of(by_name));
+  CHECK(candidate_names(by_role) == candidate_names(by_name));
   // The knee's place, the play operators' radii (the deflection's range) and the fan's power
   // scale (the power's peak).
   for (const std::string family :

@@ -42,4 +42,10 @@ fit::DiscoverRequest discover_request(const std::string& data, std::vector<std::
   return request;
 }
 
+std::vector<std::string> candidate_names(const fit::Candidates& candidates) {
+  std::vector<std::string> names;
+  for (const auto& candidate : candidates.candidates) names.push_back(candidate.name);
+  return names;
+}
+
 }  // namespace tcpmsim::testing

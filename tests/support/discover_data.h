@@ -22,4 +22,7 @@ std::string discover_measurement(const std::string& name, std::vector<std::strin
 // all), two multistart points per fit, validation from 200 s, to keep the suite quick.
 fit::DiscoverRequest discover_request(const std::string& data, std::vector<std::string> effects);
 
+// The candidates' effect names, in the catalogue's order (a family once per member).
+std::vector<std::string> candidate_names(const fit::Candidates& candidates);
+
 }  // namespace tcpmsim::testing
