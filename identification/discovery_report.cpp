@@ -27,6 +27,33 @@ const CandidateOutcome* verdict_of(const Discovery& discovery) {
   return &discovery.candidates.front();
 }
 
+// The outputs the model with the named effect still misses by more than the noise (its
+// validation RMSE beyond the margin --floor-margin gives the floor, the test the base model
+// takes): another effect may be missing there. Empty without a named effect.
+std::vector<std::size_t> missed_with_effect(const Discovery& discovery) {
+  std::vector<std::size_t> missed;
+  const CandidateOutcome* verdict = verdict_of(discovery);
+  if (!verdict) return missed;
+  const auto at_noise = at_noise_floor(verdict->validation_rmse, discovery.setup.floor,
+                                       discovery.setup.request.floor_margin);
+  for (std::size_t k = 0; k < at_noise.size(); ++k)
+    if (!at_noise[k]) missed.push_back(k);
+  return missed;
+}
+
+// "force 3.1 times, inductance_measure 1.4 times": the outputs' validation RMSEs with the named
+// effect, in multiples of their floors.
+std::string missed_text(const Discovery& discovery, const std::vector<std::size_t>& missed) {
+  std::string text;
+  for (const std::size_t k : missed) {
+    if (!text.empty()) text += ", ";
+    text += problem_of(discovery).outputs[k].channel + " " +
+            number_text(verdict_of(discovery)->validation_rmse[k] / discovery.setup.floor[k], 3) +
+            " times";
+  }
+  return text;
+}
+
 // Whether an output's base validation residual passes Ljung-Box at the 1 % level.
 bool residual_white(const Discovery& discovery, std::size_t output) {
   return discovery.diagnostics.outputs[output].whiteness.p_value >= 0.01;
@@ -191,9 +218,15 @@ std::string discovery_json(const Discovery& discovery) {
       {"parameters", estimates_json(discovery.base)}};
   const CandidateOutcome* verdict = verdict_of(discovery);
   const auto& augmented_rmse = verdict ? verdict->validation_rmse : discovery.base.validation.rmse;
+  const auto augmented_at_noise =
+      at_noise_floor(augmented_rmse, discovery.setup.floor, discovery.setup.request.floor_margin);
   json["augmented"] = {{"effect", verdict ? nlohmann::json(verdict->name) : nullptr},
                        {"validation_rmse", per_output_json(discovery, augmented_rmse)},
+                       {"at_noise_floor", nlohmann::json::object()},
                        {"parameters", estimates_json(verdict ? verdict->result : discovery.base)}};
+  for (std::size_t k = 0; k < augmented_at_noise.size(); ++k)
+    json["augmented"]["at_noise_floor"][problem_of(discovery).outputs[k].channel] =
+        static_cast<bool>(augmented_at_noise[k]);
   json["gap_shrink"] = verdict ? verdict->gap_shrink : 0.0;
   json["gap_closed"] = number_or_null(discovery.gap_closed);
   json["noise"] = per_output_json(discovery, discovery.noise);
@@ -284,6 +317,9 @@ std::string discovery_summary(const Discovery& discovery) {
   else
     out << " (the base model misses by more than the noise and no candidate explains it)";
   out << "\n";
+  if (const auto missed = missed_with_effect(discovery); !missed.empty())
+    out << "  with it the model still misses the noise floor (" << missed_text(discovery, missed)
+        << "): another effect may be missing; discover again with augmented.yaml as --model\n";
   return out.str();
 }
 
@@ -379,6 +415,16 @@ std::string discovery_report(const Discovery& discovery) {
         << ". " << verdict->signature << ": " << verdict->signature_evidence << ".";
     out << " The effect closes " << text(100 * discovery.gap_closed, 3)
         << " % of the gap above the noise floor." << aliases_text(*verdict) << "\n";
+    if (const auto missed = missed_with_effect(discovery); missed.empty())
+      out << "\nWith it the model fits every output to within " << text(100 * request.floor_margin)
+          << " % of its noise floor.\n";
+    else
+      out << "\nWith it the model still misses by more than the noise (validation RMSE "
+          << missed_text(discovery, missed)
+          << " its floor): another effect may be missing. Run discover again with "
+             "`augmented.yaml` as `--model`: the named effect stays attached with its fitted "
+             "values, and every candidate joins it (to refit the named effect too, list its "
+             "parameters with the base laws' in `--parameters`).\n";
   } else if (discovery.kind == VerdictKind::none) {
     out << "**none**: the base model fits to the noise floor (every output's validation RMSE is "
            "within "

@@ -247,6 +247,28 @@ TEST_CASE("A short discover goes through every stage and writes every file it na
   std::ifstream json(std::filesystem::path(directory) / "discovery.json");
   const std::string text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
   CHECK_THAT(text, Catch::Contains("\"verdict\": \"hysteresis\""));
+
+  // The model with the named effect takes the base model's test against the noise floor: where
+  // it still misses, the summary, the report and discovery.json say so, and that another effect
+  // may be missing.
+  const double floor = found.setup.floor[0];
+  const bool fits = candidate.validation_rmse[0] <= (1.0 + request.floor_margin) * floor;
+  CHECK_THAT(text, Catch::Contains(std::string("\"at_noise_floor\": {\n      \"force\": ") +
+                                   (fits ? "true" : "false")));
+  fit::Discovery still_missing = found;
+  still_missing.candidates.front().validation_rmse[0] = 3.0 * floor;
+  CHECK_THAT(fit::discovery_summary(still_missing),
+             Catch::Contains("still misses the noise floor (force 3 times)"));
+  CHECK_THAT(fit::discovery_report(still_missing),
+             Catch::Contains("validation RMSE force 3 times its floor): another effect may be "
+                             "missing. Run discover again with `augmented.yaml` as `--model`"));
+  CHECK_THAT(fit::discovery_json(still_missing),
+             Catch::Contains("\"at_noise_floor\": {\n      \"force\": false"));
+  fit::Discovery at_floor = found;
+  at_floor.candidates.front().validation_rmse[0] = floor;
+  CHECK_THAT(fit::discovery_summary(at_floor), !Catch::Contains("still misses"));
+  CHECK_THAT(fit::discovery_report(at_floor),
+             Catch::Contains("With it the model fits every output to within"));
 }
 
 TEST_CASE("The noise floor is read from the data: white noise under a smooth signal and steps") {
