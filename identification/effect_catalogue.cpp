@@ -103,12 +103,15 @@ class CandidateBuilder {
     candidate_.description = std::move(description);
     candidate_.signature = std::move(signature);
   }
-  // A new effect section of this kind; the keys that follow go into it.
+  // A new effect section of this kind, named after the family (its second section `_2`, and so
+  // on), or the first such name no effect holds yet: a model from an earlier discover may carry
+  // the family's effect already. The keys that follow go into it.
   CandidateBuilder& attach(const std::string& kind) {
+    std::string name = candidate_.name;
+    for (int n = 2; named(name); ++n) name = candidate_.name + "_" + std::to_string(n);
     sections_.emplace_back();
     sections_.back()["type"] = kind;
-    sections_.back()["name"] =
-        candidate_.name + (sections_.size() > 1 ? "_" + std::to_string(sections_.size()) : "");
+    sections_.back()["name"] = name;
     return *this;
   }
   // A key at a fixed value.
@@ -145,6 +148,18 @@ class CandidateBuilder {
     candidate_.parameters.push_back({path, unit, lower, upper});
     candidate_.nested.push_back(nested);
     return *this;
+  }
+  // Whether one of the base model's effects or of the sections so far is called `name` (an effect
+  // without a `name` is called after its type).
+  bool named(const std::string& name) const {
+    const auto called = [&](const YAML::Node& section) {
+      const YAML::Node given = section["name"];
+      return (given ? given.as<std::string>() : section["type"].as<std::string>("")) == name;
+    };
+    if (base_.effects)
+      for (const auto& section : base_.effects)
+        if (called(section)) return true;
+    return std::any_of(sections_.begin(), sections_.end(), called);
   }
   EffectCandidate build() {
     if (!sections_.empty()) {

@@ -91,6 +91,37 @@ TEST_CASE(
   }
 }
 
+TEST_CASE(
+    "A model that carries a family's effect already gets that family's candidates beside it") {
+  // A model from an earlier discover (its augmented.yaml): a Dahl element called after its type
+  // and a slow branch called after its family. Every candidate attaches under names of its own.
+  const std::string data_path = protocol_record("60 s");
+  const MeasuredData data = read_measured_data(data_path, *shared_units());
+  const std::string carried =
+      "muscle.effects=[{type: hysteresis, stiffness: 50 N/m, force: 6 mN}, {type: maxwell_branch, "
+      "name: slow_relaxation, stiffness: 1.5 N/m, time_constant: 300 s}]";
+  const Scenario base = base_model(data_path, {carried});
+  const auto candidates = fit::effect_candidates(base, base.make_context(), data, {"load.force"});
+  std::size_t hysteresis = 0, relaxation = 0;
+  for (const auto& candidate : candidates.candidates) {
+    INFO(candidate.name << " [" << candidate.member << "]");
+    std::vector<std::string> overrides = candidate.overrides;
+    overrides.push_back("measurement.file=" + data_path);
+    overrides.push_back("scenario.duration=60 s");
+    const Scenario augmented =
+        load_scenario(source_path("configs/discover/ch7_base.yaml"), overrides, shared_units());
+    for (const auto& parameter : candidate.parameters)
+      CHECK(augmented.system->parameter_index(parameter.path));
+    // The carried effects stay, with their own names and values.
+    CHECK(augmented.system->parameter_index("muscle.effects[0].stiffness"));
+    CHECK(augmented.make_context().parameter("muscle.effects[1].time_constant") == 300.0);
+    hysteresis += candidate.name == "hysteresis";
+    relaxation += candidate.name == "slow_relaxation";
+  }
+  CHECK(hysteresis >= 2);  // the Dahl element and the Prandtl-Ishlinskii operators
+  CHECK(relaxation >= 2);  // one branch and two
+}
+
 TEST_CASE("Candidates that cannot attach to a base model are skipped with the reason") {
   const std::string data_path = protocol_record("60 s");
   const MeasuredData data = read_measured_data(data_path, *shared_units());
