@@ -186,6 +186,13 @@ TEST_CASE("A bracket or quote never closed is reported where it opens (issue 13)
   CHECK(error_of(replaced(kValid, "output: {rate: 10 Hz}", "output: {rate: 10 Hz]")) ==
         "test.yaml:2:9: error: invalid YAML: unclosed flow mapping '{' opened here (']' at 2:21 "
         "does not close it)");
+  // A path with an index inside a flow mapping: its ']' closes nothing, and the message says
+  // what to write instead.
+  CHECK(error_of(replaced(kValid, "output: {rate: 10 Hz}",
+                          "output: {rate: 10 Hz, of: muscle.effects[0].force}")) ==
+        "test.yaml:2:9: error: invalid YAML: unclosed flow mapping '{' opened here (']' at 2:43 "
+        "does not close it); inside {...} or [...] a path with an index needs quotes: "
+        "\"muscle.effects[0].force\"");
   // Quotes and brackets in comments and inside plain text open nothing.
   CHECK(error_of(replaced(replaced(kValid, "heat_capacity: 0.5 J/K",
                                    "heat_capacity: 0.5 J/K  # it's [not \"open"),

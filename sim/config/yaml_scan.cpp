@@ -1,5 +1,7 @@
 #include "sim/config/yaml_scan.h"
 
+#include <cctype>
+#include <string>
 #include <vector>
 
 namespace tcpmsim {
@@ -45,6 +47,7 @@ class Scanner {
   std::optional<UnclosedConstruct> quoted();
   bool value_may_end_here() const;
   std::optional<UnclosedConstruct> close_flow();
+  std::string indexed_plain_scalar() const;
   static UnclosedConstruct unclosed(const Flow& flow, const std::string& note);
 
   std::string_view text_;
@@ -159,12 +162,33 @@ UnclosedConstruct Scanner::unclosed(const Flow& flow, const std::string& note) {
   return {flow.where.line, flow.where.column, what + note};
 }
 
+// At a ']' that closes nothing: the plain scalar it ends when that reads as a path with an index,
+// "muscle.effects[0].stiffness" (whose brackets are flow indicators inside {...} or [...]); "" if
+// it does not.
+std::string Scanner::indexed_plain_scalar() const {
+  std::size_t open = at_;
+  while (open > 0 && std::isdigit(static_cast<unsigned char>(text_[open - 1]))) --open;
+  if (open == at_ || open < 2 || text_[open - 1] != '[') return "";
+  const auto separates = [](char c) {
+    return c == ' ' || c == '\t' || c == ',' || c == '{' || c == '[' || c == '\n';
+  };
+  std::size_t first = open - 1;
+  if (separates(text_[first - 1])) return "";  // a sequence opened after a separator
+  while (first > 0 && !separates(text_[first - 1])) --first;
+  std::size_t end = at_ + 1;
+  while (end < text_.size() && !separates(text_[end]) && text_[end] != '}') ++end;
+  return std::string(text_.substr(first, end - first));
+}
+
 std::optional<UnclosedConstruct> Scanner::close_flow() {
   const char c = peek();
   const Flow& open = flows_.back();
   if (c != (open.opener == '[' ? ']' : '}')) {
-    return unclosed(open, " ('" + std::string(1, c) + "' at " + std::to_string(here_.line) + ":" +
-                              std::to_string(here_.column) + " does not close it)");
+    std::string note = " ('" + std::string(1, c) + "' at " + std::to_string(here_.line) + ":" +
+                       std::to_string(here_.column) + " does not close it)";
+    if (const std::string path = c == ']' ? indexed_plain_scalar() : ""; !path.empty())
+      note += "; inside {...} or [...] a path with an index needs quotes: \"" + path + "\"";
+    return unclosed(open, note);
   }
   flows_.pop_back();
   advance();
