@@ -54,11 +54,7 @@ TEST_CASE(
   const Trace bare = simulate(base);
   for (const auto& candidate : candidates.candidates) {
     INFO(candidate.name << " [" << candidate.member << "]");
-    std::vector<std::string> overrides = candidate.overrides;
-    overrides.push_back("measurement.file=" + data_path);
-    overrides.push_back("scenario.duration=60 s");
-    const Scenario augmented =
-        load_scenario(source_path("configs/discover/ch7_base.yaml"), overrides, shared_units());
+    const Scenario augmented = base_model(data_path, candidate.overrides);
     REQUIRE_FALSE(candidate.parameters.empty());
     REQUIRE(candidate.nested.size() == candidate.parameters.size());
     Context nested = augmented.make_context();
@@ -105,11 +101,7 @@ TEST_CASE(
   std::size_t hysteresis = 0, relaxation = 0;
   for (const auto& candidate : candidates.candidates) {
     INFO(candidate.name << " [" << candidate.member << "]");
-    std::vector<std::string> overrides = candidate.overrides;
-    overrides.push_back("measurement.file=" + data_path);
-    overrides.push_back("scenario.duration=60 s");
-    const Scenario augmented =
-        load_scenario(source_path("configs/discover/ch7_base.yaml"), overrides, shared_units());
+    const Scenario augmented = base_model(data_path, candidate.overrides);
     for (const auto& parameter : candidate.parameters)
       CHECK(augmented.system->parameter_index(parameter.path));
     // The carried effects stay, with their own names and values.
