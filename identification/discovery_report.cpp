@@ -29,27 +29,20 @@ const CandidateOutcome* verdict_of(const Discovery& discovery) {
 
 // The outputs the model with the named effect still misses by more than the noise (its
 // validation RMSE beyond the margin --floor-margin gives the floor, the test the base model
-// takes): another effect may be missing there. Empty without a named effect.
-std::vector<std::size_t> missed_with_effect(const Discovery& discovery) {
-  std::vector<std::size_t> missed;
+// takes), with their RMSEs in multiples of their floors: "force 3.1 times, inductance_measure
+// 1.4 times". Another effect may be missing there. "" without a named effect or a miss.
+std::string missed_with_effect(const Discovery& discovery) {
   const CandidateOutcome* verdict = verdict_of(discovery);
-  if (!verdict) return missed;
-  const auto at_noise = at_noise_floor(verdict->validation_rmse, discovery.setup.floor,
-                                       discovery.setup.request.floor_margin);
-  for (std::size_t k = 0; k < at_noise.size(); ++k)
-    if (!at_noise[k]) missed.push_back(k);
-  return missed;
-}
-
-// "force 3.1 times, inductance_measure 1.4 times": the outputs' validation RMSEs with the named
-// effect, in multiples of their floors.
-std::string missed_text(const Discovery& discovery, const std::vector<std::size_t>& missed) {
+  if (!verdict) return "";
+  const auto& floor = discovery.setup.floor;
+  const auto at_noise =
+      at_noise_floor(verdict->validation_rmse, floor, discovery.setup.request.floor_margin);
   std::string text;
-  for (const std::size_t k : missed) {
+  for (std::size_t k = 0; k < at_noise.size(); ++k) {
+    if (at_noise[k]) continue;
     if (!text.empty()) text += ", ";
     text += problem_of(discovery).outputs[k].channel + " " +
-            number_text(verdict_of(discovery)->validation_rmse[k] / discovery.setup.floor[k], 3) +
-            " times";
+            number_text(verdict->validation_rmse[k] / floor[k], 3) + " times";
   }
   return text;
 }
@@ -317,8 +310,8 @@ std::string discovery_summary(const Discovery& discovery) {
   else
     out << " (the base model misses by more than the noise and no candidate explains it)";
   out << "\n";
-  if (const auto missed = missed_with_effect(discovery); !missed.empty())
-    out << "  with it the model still misses the noise floor (" << missed_text(discovery, missed)
+  if (const std::string missed = missed_with_effect(discovery); !missed.empty())
+    out << "  with it the model still misses the noise floor (" << missed
         << "): another effect may be missing; discover again with augmented.yaml as --model\n";
   return out.str();
 }
@@ -415,12 +408,11 @@ std::string discovery_report(const Discovery& discovery) {
         << ". " << verdict->signature << ": " << verdict->signature_evidence << ".";
     out << " The effect closes " << text(100 * discovery.gap_closed, 3)
         << " % of the gap above the noise floor." << aliases_text(*verdict) << "\n";
-    if (const auto missed = missed_with_effect(discovery); missed.empty())
+    if (const std::string missed = missed_with_effect(discovery); missed.empty())
       out << "\nWith it the model fits every output to within " << text(100 * request.floor_margin)
           << " % of its noise floor.\n";
     else
-      out << "\nWith it the model still misses by more than the noise (validation RMSE "
-          << missed_text(discovery, missed)
+      out << "\nWith it the model still misses by more than the noise (validation RMSE " << missed
           << " its floor): another effect may be missing. Run discover again with "
              "`augmented.yaml` as `--model`: the named effect stays attached with its fitted "
              "values, and every candidate joins it (to refit the named effect too, list its "
