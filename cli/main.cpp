@@ -22,6 +22,7 @@
 #include "cli/progress.h"
 #include "identification/bench_measurement.h"
 #include "identification/discovery_report.h"
+#include "identification/discovery_runs.h"
 #include "identification/effect_catalogue.h"
 #include "identification/fit_report.h"
 #include "kinds/standard_kinds.h"
@@ -78,6 +79,7 @@ struct Options {
   int fit_jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   tcpmsim::fit::DiscoverRequest discover;  // discover
   bool plots = true;
+  int max_effects = 1;  // discover: effects sought, one a run
   tcpmsim::cli::ExportFmuOptions export_fmu;
 };
 
@@ -350,7 +352,36 @@ std::string plot_tool() {
   return TCPMSIM_PLOT_TOOL;
 }
 
-// The missing effect: a base model fitted, diagnosed, and refitted with each named effect.
+// A discover run's files, its summary, and its plots, drawn by a child process: what this one
+// printed goes out first, so that a pipe keeps the order. A picture that cannot be drawn is a
+// warning: the analysis is written and stands without it.
+void write_discover_run(const Options& options, const tcpmsim::fit::Discovery& discovery,
+                        const std::string& directory,
+                        const std::shared_ptr<const tcpmsim::UnitSystem>& units) {
+  const auto& request = discovery.setup.request;
+  const auto written = tcpmsim::fit::write_discovery(
+      directory, discovery,
+      tcpmsim::file_provenance(options.invocation, {request.model_file}, request.overrides, units));
+  if (!options.quiet) {
+    std::cout << tcpmsim::fit::discovery_summary(discovery);
+    for (const auto& file : written) std::cout << "wrote " << file << "\n";
+  }
+  if (!options.plots) return;
+  std::cout.flush();
+  std::cerr.flush();
+  const std::string command =
+      "'" + plot_tool() + "' discovery '" + directory + "' -o '" + directory + "'";
+  if (std::system(command.c_str()) != 0) {
+    std::cerr << "tcpmsim: warning: the plots of " << directory << " could not be drawn ("
+              << command << "); the analysis is complete without them (--no-plots leaves "
+              << "them out)\n";
+  } else if (!options.quiet) {
+    std::cout << "wrote " << directory << "/residuals.png, " << directory << "/diagnostic.png\n";
+  }
+}
+
+// The missing effect: a base model fitted, diagnosed, and refitted with each named effect; with
+// --max-effects N, again from the model with it while that still misses the noise floor.
 int discover(const Options& options) {
   auto units = std::make_shared<tcpmsim::UnitSystem>();
   tcpmsim::fit::DiscoverRequest request = options.discover;
@@ -359,46 +390,37 @@ int discover(const Options& options) {
   const tcpmsim::fit::DiscoverSetup setup = tcpmsim::fit::setup_discovery(request, units);
   const std::string& directory = options.fit_directory;
   const bool made = make_output_directory(directory);
-  tcpmsim::fit::Discovery discovery;
+  std::vector<tcpmsim::fit::EffectRun> runs;
   try {
-    discovery = tcpmsim::fit::discover(setup);
+    runs = tcpmsim::fit::discover_effects(
+        setup, options.max_effects, directory,
+        [&](const tcpmsim::fit::Discovery& discovery, const std::string& run_directory) {
+          write_discover_run(options, discovery, run_directory, units);
+        },
+        [&](int number, const std::string& run_directory, const std::string& model) {
+          if (options.quiet) return;
+          std::cout << "\nrun " << number << " of at most " << options.max_effects
+                    << " (--max-effects): discover again from " << model << " into "
+                    << run_directory << "\n";
+          std::cout.flush();
+        });
   } catch (const tcpmsim::fit::FitFailure& failure) {
     std::cerr << "tcpmsim: the base model's fit failed: " << failure.what() << "\n";
     if (made) remove_if_empty(directory);
     return kSimulationFailed;
   }
-  const auto written = tcpmsim::fit::write_discovery(
-      directory, discovery,
-      tcpmsim::file_provenance(options.invocation, {request.model_file}, request.overrides, units));
-  if (!options.quiet) {
-    std::cout << tcpmsim::fit::discovery_summary(discovery);
-    for (const auto& file : written) std::cout << "wrote " << file << "\n";
+  if (options.max_effects > 1) {
+    const std::string path = (std::filesystem::path(directory) / "effects.json").string();
+    std::ofstream(path) << tcpmsim::fit::effect_runs_json(runs, options.max_effects);
+    if (!options.quiet)
+      std::cout << tcpmsim::fit::effect_runs_summary(runs, options.max_effects) << "wrote " << path
+                << "\n";
   }
-  // The residuals before and after, and the diagnostic that gave the effect away, drawn by a
-  // child process: what this one printed goes out first, so that a pipe keeps the order. A
-  // picture that cannot be drawn is a warning: the analysis is written and stands without it.
-  if (options.plots) {
-    std::cout.flush();
-    std::cerr.flush();
-    const std::string command =
-        "'" + plot_tool() + "' discovery '" + directory + "' -o '" + directory + "'";
-    if (std::system(command.c_str()) != 0) {
-      std::cerr << "tcpmsim: warning: the plots of " << directory << " could not be drawn ("
-                << command << "); the analysis is complete without them (--no-plots leaves "
-                << "them out)\n";
-    } else if (!options.quiet) {
-      std::cout << "wrote " << directory << "/residuals.png, " << directory << "/diagnostic.png\n";
-    }
-  }
-  switch (discovery.kind) {
-    case tcpmsim::fit::VerdictKind::effect:
-      return kSuccess;
-    case tcpmsim::fit::VerdictKind::none:
-      return kVerdictNone;
-    case tcpmsim::fit::VerdictKind::unexplained:
-      break;
-  }
-  return kVerdictUnexplained;
+  // The first run's verdict: an effect named (0), the base model at the noise floor, or a miss
+  // no candidate explains. What later runs found is in effects.json.
+  const std::string& first = runs.front().verdict;
+  if (runs.front().named) return kSuccess;
+  return first == "none" ? kVerdictNone : kVerdictUnexplained;
 }
 
 // A synthetic measurement: a scenario read by a bench's instruments, written as a CSV file.
@@ -782,6 +804,11 @@ int main(int argc, char** argv) {
   discover_command->add_flag(
       "--despike-all", request.despike_all,
       "Replace spikes in every compared output, not only the coil's measure");
+  discover_command
+      ->add_option("--max-effects", options.max_effects,
+                   "Effects sought, one a run: while the model with the named effect still "
+                   "misses the noise floor, discover again from it (into <out>/effect2, ...)")
+      ->check(CLI::Range(1, 10));
   discover_command->add_option("-j,--jobs", options.fit_jobs, "Candidates fitted at once (threads)")
       ->check(CLI::Range(1, 256));
   discover_command->add_flag(

@@ -27,26 +27,6 @@ const CandidateOutcome* verdict_of(const Discovery& discovery) {
   return &discovery.candidates.front();
 }
 
-// The outputs the model with the named effect still misses by more than the noise (its
-// validation RMSE beyond the margin --floor-margin gives the floor, the test the base model
-// takes), with their RMSEs in multiples of their floors: "force 3.1 times, inductance_measure
-// 1.4 times". Another effect may be missing there. "" without a named effect or a miss.
-std::string missed_with_effect(const Discovery& discovery) {
-  const CandidateOutcome* verdict = verdict_of(discovery);
-  if (!verdict) return "";
-  const auto& floor = discovery.setup.floor;
-  const auto at_noise =
-      at_noise_floor(verdict->validation_rmse, floor, discovery.setup.request.floor_margin);
-  std::string text;
-  for (std::size_t k = 0; k < at_noise.size(); ++k) {
-    if (at_noise[k]) continue;
-    if (!text.empty()) text += ", ";
-    text += problem_of(discovery).outputs[k].channel + " " +
-            number_text(verdict->validation_rmse[k] / floor[k], 3) + " times";
-  }
-  return text;
-}
-
 // Whether an output's base validation residual passes Ljung-Box at the 1 % level.
 bool residual_white(const Discovery& discovery, std::size_t output) {
   return discovery.diagnostics.outputs[output].whiteness.p_value >= 0.01;
@@ -144,6 +124,22 @@ std::string aliases_text(const CandidateOutcome& verdict) {
 }
 
 }  // namespace
+
+std::string missed_with_effect(const Discovery& discovery) {
+  const CandidateOutcome* verdict = verdict_of(discovery);
+  if (!verdict) return "";
+  const auto& floor = discovery.setup.floor;
+  const auto at_noise =
+      at_noise_floor(verdict->validation_rmse, floor, discovery.setup.request.floor_margin);
+  std::string text;
+  for (std::size_t k = 0; k < at_noise.size(); ++k) {
+    if (at_noise[k]) continue;
+    if (!text.empty()) text += ", ";
+    text += problem_of(discovery).outputs[k].channel + " " +
+            number_text(verdict->validation_rmse[k] / floor[k], 3) + " times";
+  }
+  return text;
+}
 
 std::string discovery_json(const Discovery& discovery) {
   nlohmann::json json;
@@ -312,7 +308,8 @@ std::string discovery_summary(const Discovery& discovery) {
   out << "\n";
   if (const std::string missed = missed_with_effect(discovery); !missed.empty())
     out << "  with it the model still misses the noise floor (" << missed
-        << "): another effect may be missing; discover again with augmented.yaml as --model\n";
+        << "): another effect may be missing; discover again with augmented.yaml as --model (what "
+           "--max-effects does)\n";
   return out.str();
 }
 
@@ -414,7 +411,8 @@ std::string discovery_report(const Discovery& discovery) {
     else
       out << "\nWith it the model still misses by more than the noise (validation RMSE " << missed
           << " its floor): another effect may be missing. Run discover again with "
-             "`augmented.yaml` as `--model`: the named effect stays attached with its fitted "
+             "`augmented.yaml` as `--model` (`--max-effects` does so): the named effect stays "
+             "attached with its fitted "
              "values, and every candidate joins it (to refit the named effect too, list its "
              "parameters with the base laws' in `--parameters`).\n";
   } else if (discovery.kind == VerdictKind::none) {

@@ -16,6 +16,12 @@ namespace tcpmsim::fit {
 // "diagnostics": {...}, "skipped": [...], "settings": {...}}.
 std::string discovery_json(const Discovery& discovery);
 
+// The outputs the model with the named effect still misses by more than the noise (its
+// validation RMSE beyond the margin --floor-margin gives the floor, the test the base model
+// takes), with their RMSEs in multiples of their floors: "force 3.1 times, inductance_measure
+// 1.4 times". Another effect may be missing there. "" without a named effect or a miss.
+std::string missed_with_effect(const Discovery& discovery);
+
 // A short human-readable report of the evidence (Markdown).
 std::string discovery_report(const Discovery& discovery);
 

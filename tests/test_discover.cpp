@@ -222,12 +222,7 @@ TEST_CASE("Hysteresis hidden in the data is named, and attaching it shrinks the 
 // the base fit, the candidate's nested refit, the ranking, the diagnostics and the files. The
 // case above judges the verdict on a longer record; this one is what the sanitizer tree runs.
 TEST_CASE("A short discover goes through every stage and writes every file it names") {
-  const std::string data = discover_measurement(
-      "hysteresis_short", {"muscle.effects=[{type: hysteresis, stiffness: 50 N/m, force: 6 mN}]"},
-      "120 s");
-  auto request = discover_request(data, {"hysteresis"});
-  request.validate_from = 80.0;
-  request.starts = 1;
+  const auto request = short_hysteresis_request();
   const fit::Discovery found = fit::discover(fit::setup_discovery(request, shared_units()));
   INFO(fit::discovery_summary(found));
   REQUIRE(found.candidates.size() == 1);

@@ -1,16 +1,19 @@
 // tcpmsim discover's verdicts on whole runs over every candidate (issue 28): none on data
 // without an effect, every candidate nesting the base model, unexplained where no candidate
-// explains the residual, and the two effects of the real measurement named. The longest
+// explains the residual, the two effects of the real measurement named, and --max-effects going
+// on from the model a run wrote. The longest
 // specifications of the suite (about four minutes in Release): the sanitizer tree leaves this
 // file out (TCPMSIM_TEST_EXCLUDE_FILES in .ci/run), and runs discover's pieces and one whole
 // discover (test_discover.cpp) instead.
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <filesystem>
 
 #include "identification/discovery.h"
 #include "identification/discovery_diagnostics.h"
 #include "identification/discovery_report.h"
+#include "identification/discovery_runs.h"
 #include "sim/value_check.h"
 #include "tests/support/discover_data.h"
 #include "tests/support/test_support.h"
@@ -177,4 +180,46 @@ TEST_CASE("A candidate that never leaves its nested start is fitted again from a
     kept = kept || candidate.drawn_kept;
   }
   CHECK(kept);
+}
+
+// --max-effects: a run whose model with the named effect still misses the floor is followed by a
+// run from the model it wrote. A floor margin of 0 makes every model miss, so the second run
+// comes on data with one effect (the short record of "A short discover goes through every stage").
+TEST_CASE("A run whose effect still misses the floor is followed by one from the model it wrote") {
+  auto request = short_hysteresis_request();
+  request.floor_margin = 0.0;
+  const std::string out = process_directory("discover_effects");
+  std::vector<fit::Discovery> seen;
+  const auto runs =
+      fit::discover_effects(fit::setup_discovery(request, shared_units()), 2, out,
+                            [&](const fit::Discovery& discovery, const std::string& directory) {
+                              fit::write_discovery(directory, discovery);
+                              seen.push_back(discovery);
+                            });
+  REQUIRE(runs.size() == 2);
+  REQUIRE(seen.size() == 2);
+  INFO(fit::effect_runs_summary(runs, 2));
+  CHECK(runs[0].verdict == "hysteresis");
+  CHECK(runs[0].directory == out);
+  CHECK(runs[1].directory == out + "/effect2");
+  const std::string first_model = out + "/augmented.yaml";
+  CHECK(runs[1].model == first_model);
+  CHECK(seen[1].setup.request.model_file == first_model);
+  CHECK(seen[1].setup.request.data_file == request.data_file);
+  // The second run's base model is the first's augmented model, refitted from its values: on
+  // the one output, its identification error is no larger than the augmented fit's.
+  const auto& augmented = seen[0].candidates.front().result;
+  CHECK(seen[1].base.identification.rmse[0] <= augmented.identification.rmse[0] * (1.0 + 1e-6));
+  // Every candidate of the second run joins the effect it carries, its own family's beside it.
+  REQUIRE(!seen[1].candidates.empty());
+  for (const auto& candidate : seen[1].candidates) {
+    CHECK(candidate.status == "fitted");
+    CHECK_THAT(candidate.spec.problem.model->resolved_yaml, Catch::Contains("hysteresis_2"));
+  }
+  CHECK(std::filesystem::exists(out + "/effect2/discovery.json"));
+  // effects.json names the model that carries what was found, and that file was written.
+  const std::string model =
+      runs[1].named ? out + "/effect2/augmented.yaml" : out + "/effect2/baseline.yaml";
+  CHECK_THAT(fit::effect_runs_json(runs, 2), Catch::Contains("\"model\": \"" + model + "\""));
+  CHECK(std::filesystem::exists(model));
 }

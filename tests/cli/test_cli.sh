@@ -265,6 +265,10 @@ expect 2 "discover --alias-correlation is a correlation" -- "$tcpmsim" discover 
   --model "$discover/ch7_base.yaml" --data "$work/measured.csv" --inputs power,deflection \
   --outputs force --validate-from 400 --alias-correlation 1.5 --out "$work/discover"
 contains "$work/err" "--alias-correlation: Value 1.5 not in range 0.000000 to 1.000000" "the range is stated"
+expect 2 "discover --max-effects counts runs, from one" -- "$tcpmsim" discover \
+  --model "$discover/ch7_base.yaml" --data "$work/measured.csv" --inputs power,deflection \
+  --outputs force --validate-from 400 --max-effects 0 --out "$work/discover"
+contains "$work/err" "--max-effects: Value 0 not in range 1 to 10" "the range is stated"
 
 # analyze: any record's step metrics and frequency response; a request the record cannot serve
 # is a usage error naming what it has.

@@ -42,6 +42,16 @@ fit::DiscoverRequest discover_request(const std::string& data, std::vector<std::
   return request;
 }
 
+fit::DiscoverRequest short_hysteresis_request() {
+  const std::string data = discover_measurement(
+      "hysteresis_short", {"muscle.effects=[{type: hysteresis, stiffness: 50 N/m, force: 6 mN}]"},
+      "120 s");
+  auto request = discover_request(data, {"hysteresis"});
+  request.validate_from = 80.0;
+  request.starts = 1;
+  return request;
+}
+
 std::vector<std::string> candidate_names(const fit::Candidates& candidates) {
   std::vector<std::string> names;
   for (const auto& candidate : candidates.candidates) names.push_back(candidate.name);

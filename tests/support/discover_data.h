@@ -22,6 +22,11 @@ std::string discover_measurement(const std::string& name, std::vector<std::strin
 // all), two multistart points per fit, validation from 200 s, to keep the suite quick.
 fit::DiscoverRequest discover_request(const std::string& data, std::vector<std::string> effects);
 
+// The short discover: a Dahl element (50 N/m, 6 mN) hidden in 120 s of data, 80 s to identify and
+// 40 s to validate, the hysteresis family alone, one start: every stage of a discover at the
+// least cost (what the sanitizer tree runs whole).
+fit::DiscoverRequest short_hysteresis_request();
+
 // The candidates' effect names, in the catalogue's order (a family once per member).
 std::vector<std::string> candidate_names(const fit::Candidates& candidates);
 

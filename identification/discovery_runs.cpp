@@ -1,0 +1,198 @@
+#include "identification/discovery_runs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "identification/discovery_report.h"
+#include "identification/json_numbers.h"
+#include "identification/output_error_fit.h"
+#include "sim/value_check.h"
+
+namespace tcpmsim::fit {
+
+namespace {
+
+std::string in_directory(const std::string& directory, const char* name) {
+  return (std::filesystem::path(directory) / name).string();
+}
+
+EffectRun run_of(const Discovery& discovery, int number, const std::string& directory) {
+  EffectRun run;
+  run.number = number;
+  run.directory = directory;
+  run.model = discovery.setup.request.model_file;
+  run.verdict = discovery.verdict;
+  run.named = discovery.kind == VerdictKind::effect;
+  run.gap_closed = discovery.gap_closed;
+  run.still_missed = missed_with_effect(discovery);
+  run.floor_margin = discovery.setup.request.floor_margin;
+  return run;
+}
+
+// The model at the end of the runs, with every named effect: the last run's augmented model when
+// it named one; after a later run that named none, that run's base model as it refitted it (the
+// effects the runs before named, every base parameter refitted with them); after a failed run,
+// the augmented model of the run before. Empty when no run named an effect.
+struct FinalModel {
+  std::string path;
+  std::vector<std::string> effects;
+  bool at_floor = false;     // fits every output to within the margin of its floor
+  std::string still_missed;  // for a named effect's model that does not
+};
+
+FinalModel final_model(const std::vector<EffectRun>& runs) {
+  FinalModel model;
+  for (const auto& run : runs)
+    if (run.named) model.effects.push_back(run.verdict);
+  if (model.effects.empty()) return model;
+  const EffectRun& last = runs.back();
+  if (last.named) {
+    model.path = in_directory(last.directory, "augmented.yaml");
+    model.still_missed = last.still_missed;
+    model.at_floor = last.still_missed.empty();
+  } else if (last.verdict == "failed") {
+    const EffectRun& before = runs[runs.size() - 2];
+    model.path = in_directory(before.directory, "augmented.yaml");
+    model.still_missed = before.still_missed;
+  } else {
+    model.path = in_directory(last.directory, "baseline.yaml");
+    model.at_floor = last.verdict == "none";
+  }
+  return model;
+}
+
+// "hysteresis and slow_relaxation"; a family named in two runs once, with its count:
+// "hysteresis x2".
+std::string joined_names(const std::vector<std::string>& names) {
+  std::vector<std::pair<std::string, int>> counted;
+  for (const auto& name : names) {
+    auto seen = std::find_if(counted.begin(), counted.end(),
+                             [&](const auto& entry) { return entry.first == name; });
+    if (seen == counted.end())
+      counted.emplace_back(name, 1);
+    else
+      ++seen->second;
+  }
+  std::string text;
+  for (std::size_t k = 0; k < counted.size(); ++k) {
+    text += (k == 0 ? "" : k + 1 == counted.size() ? " and " : ", ") + counted[k].first;
+    if (counted[k].second > 1) text += " x" + std::to_string(counted[k].second);
+  }
+  return text;
+}
+
+std::string run_line(const EffectRun& run) {
+  std::ostringstream out;
+  out << "  " << run.number << "  " << run.verdict << ": ";
+  if (run.named)
+    out << "closes " << number_text(100 * run.gap_closed, 3)
+        << " % of the gap above the noise floor" << (run.number > 1 ? " that remained" : "");
+  else if (run.verdict == "none")
+    out << "refitted, the model fits to the noise floor";
+  else if (run.verdict == "unexplained")
+    out << "the model misses by more than the noise and no candidate explains it";
+  else
+    out << run.failure;
+  out << " (" << run.directory << ")\n";
+  return out.str();
+}
+
+}  // namespace
+
+std::string effect_run_directory(const std::string& out, int number) {
+  if (number <= 1) return out;
+  return (std::filesystem::path(out) / ("effect" + std::to_string(number))).string();
+}
+
+bool another_effect_due(const Discovery& discovery) {
+  return discovery.kind == VerdictKind::effect && !missed_with_effect(discovery).empty();
+}
+
+DiscoverRequest next_effect_request(DiscoverRequest request, const std::string& augmented_model) {
+  request.model_file = augmented_model;
+  request.overrides.clear();
+  return request;
+}
+
+std::vector<EffectRun> discover_effects(const DiscoverSetup& first, int max_effects,
+                                        const std::string& out, const EffectRunWriter& write,
+                                        const EffectRunAnnouncer& announce) {
+  std::vector<EffectRun> runs;
+  DiscoverRequest next = first.request;
+  for (int number = 1; number <= max_effects; ++number) {
+    const std::string directory = effect_run_directory(out, number);
+    if (number > 1) {
+      next = next_effect_request(next, in_directory(runs.back().directory, "augmented.yaml"));
+      std::filesystem::create_directories(directory);
+      if (announce) announce(number, directory, next.model_file);
+    }
+    try {
+      const Discovery discovery =
+          discover(number == 1 ? first : setup_discovery(next, first.units));
+      write(discovery, directory);
+      runs.push_back(run_of(discovery, number, directory));
+      if (!another_effect_due(discovery)) break;
+    } catch (const FitFailure& failure) {
+      if (number == 1) throw;
+      EffectRun failed;
+      failed.number = number;
+      failed.directory = directory;
+      failed.model = next.model_file;
+      failed.verdict = "failed";
+      failed.failure = std::string("the base model's fit failed: ") + failure.what();
+      failed.floor_margin = next.floor_margin;
+      runs.push_back(failed);
+      break;
+    }
+  }
+  return runs;
+}
+
+std::string effect_runs_summary(const std::vector<EffectRun>& runs, int max_effects) {
+  std::ostringstream out;
+  out << "\neffects sought one a run (--max-effects " << max_effects << "):\n";
+  for (const auto& run : runs) out << run_line(run);
+  const FinalModel model = final_model(runs);
+  if (model.effects.empty()) {
+    out << "no effect named\n";
+    return out.str();
+  }
+  out << "the model with " << joined_names(model.effects) << ": " << model.path << "; ";
+  if (model.at_floor)
+    out << "it fits every output to within " << number_text(100 * runs.back().floor_margin, 3)
+        << " % of its noise floor\n";
+  else if (!model.still_missed.empty())
+    out << "it still misses the noise floor (" << model.still_missed << ")"
+        << (runs.back().named && int(runs.size()) == max_effects
+                ? ": --max-effects reached, raise it to look for another"
+                : "")
+        << "\n";
+  else
+    out << "it still misses the noise floor, and no candidate explains the rest\n";
+  return out.str();
+}
+
+std::string effect_runs_json(const std::vector<EffectRun>& runs, int max_effects) {
+  nlohmann::json json;
+  json["max_effects"] = max_effects;
+  json["runs"] = nlohmann::json::array();
+  for (const auto& run : runs) {
+    json["runs"].push_back({{"run", run.number},
+                            {"directory", run.directory},
+                            {"model", run.model},
+                            {"verdict", run.verdict},
+                            {"gap_closed", number_or_null(run.named ? run.gap_closed : NAN)},
+                            {"still_missed", run.still_missed},
+                            {"failure", run.failure}});
+  }
+  const FinalModel model = final_model(runs);
+  json["effects"] = model.effects;
+  json["model"] = model.path.empty() ? nlohmann::json() : nlohmann::json(model.path);
+  json["at_noise_floor"] = model.path.empty() ? nlohmann::json() : nlohmann::json(model.at_floor);
+  return json.dump(2) + "\n";
+}
+
+}  // namespace tcpmsim::fit
