@@ -107,6 +107,24 @@ std::string effect_run_directory(const std::string& out, int number) {
   return (std::filesystem::path(out) / ("effect" + std::to_string(number))).string();
 }
 
+std::vector<std::string> remove_earlier_effect_runs(const std::string& out) {
+  std::vector<std::string> removed;
+  const std::filesystem::path directory(out);
+  std::error_code error;
+  if (std::filesystem::remove(directory / "effects.json", error))
+    removed.push_back((directory / "effects.json").string());
+  for (int number = 2;; ++number) {
+    const std::filesystem::path run = effect_run_directory(out, number);
+    // A run's directory holds its discovery.json, or nothing when its base fit failed.
+    const bool a_run = std::filesystem::exists(run / "discovery.json", error) ||
+                       std::filesystem::is_empty(run, error);
+    if (error || !a_run) break;
+    std::filesystem::remove_all(run, error);
+    removed.push_back(run.string());
+  }
+  return removed;
+}
+
 bool another_effect_due(const Discovery& discovery) {
   return discovery.kind == VerdictKind::effect && !missed_with_effect(discovery).empty();
 }
@@ -120,6 +138,7 @@ DiscoverRequest next_effect_request(DiscoverRequest request, const std::string& 
 std::vector<EffectRun> discover_effects(const DiscoverSetup& first, int max_effects,
                                         const std::string& out, const EffectRunWriter& write,
                                         const EffectRunAnnouncer& announce) {
+  remove_earlier_effect_runs(out);
   std::vector<EffectRun> runs;
   DiscoverRequest next = first.request;
   for (int number = 1; number <= max_effects; ++number) {

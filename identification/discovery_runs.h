@@ -32,6 +32,11 @@ struct EffectRun {
 // Where run `number` writes: `out` for the first, out/effect<number> for the later ones.
 std::string effect_run_directory(const std::string& out, int number);
 
+// Removes what an earlier discover with --max-effects left in `out`: effects.json and the
+// effect<k> directories that hold a discovery.json. A new discover into the same directory must
+// not leave a later run's files beside its own as if it had made them. Returns what it removed.
+std::vector<std::string> remove_earlier_effect_runs(const std::string& out);
+
 // Whether another run is due after `discovery`: it named an effect, and the model with it still
 // misses some output's noise floor by more than the margin (--floor-margin).
 bool another_effect_due(const Discovery& discovery);
@@ -51,7 +56,8 @@ using EffectRunWriter = std::function<void(const Discovery&, const std::string& 
 using EffectRunAnnouncer =
     std::function<void(int number, const std::string& directory, const std::string& model)>;
 
-// Runs discover up to `max_effects` times, the first on `first` into `out`, stopping after a
+// Runs discover up to `max_effects` times, the first on `first` into `out` (after
+// remove_earlier_effect_runs), stopping after a
 // run that names no effect or whose model with the effect fits to the noise floor. The first
 // run's failure (FitFailure) propagates; a later run's base fit that fails ends the sequence with
 // that run's verdict "failed" and the reason, the earlier runs' files standing.

@@ -2,9 +2,12 @@
 // the model fits to the noise floor (identification/discovery_runs.h).
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "identification/discovery_runs.h"
+#include "tests/support/test_support.h"
 
 using namespace tcpmsim;
 
@@ -132,4 +135,24 @@ TEST_CASE("The runs' summary names the model that carries every named effect and
     CHECK(json["at_noise_floor"].is_null());
     CHECK(json["effects"].empty());
   }
+}
+
+TEST_CASE("A discover into a directory removes the later runs an earlier discover left there") {
+  const std::filesystem::path out = tcpmsim::testing::process_directory("earlier_effect_runs");
+  std::filesystem::create_directories(out / "effect2");
+  std::filesystem::create_directories(out / "effect3");
+  std::filesystem::create_directories(out / "effect5");  // not the run after the last
+  for (const auto* file : {"effects.json", "discovery.json", "notes.txt", "effect2/discovery.json",
+                           "effect5/discovery.json"})
+    std::ofstream(out / file) << "{}\n";
+  // effect3 is empty: a run whose base fit failed.
+  const auto removed = fit::remove_earlier_effect_runs(out.string());
+  CHECK(removed.size() == 3);
+  CHECK(!std::filesystem::exists(out / "effects.json"));
+  CHECK(!std::filesystem::exists(out / "effect2"));
+  CHECK(!std::filesystem::exists(out / "effect3"));
+  CHECK(std::filesystem::exists(out / "effect5"));
+  CHECK(std::filesystem::exists(out / "discovery.json"));  // the first run's, written over
+  CHECK(std::filesystem::exists(out / "notes.txt"));
+  CHECK(fit::remove_earlier_effect_runs(out.string()).empty());
 }
