@@ -389,7 +389,11 @@ int discover(const Options& options) {
   request.overrides = options.overrides;
   const tcpmsim::fit::DiscoverSetup setup = tcpmsim::fit::setup_discovery(request, units);
   const std::string& directory = options.fit_directory;
+  tcpmsim::fit::check_outside_effect_runs(request, directory, options.max_effects);
   const bool made = make_output_directory(directory);
+  if (!options.quiet)
+    for (const auto& earlier : tcpmsim::fit::earlier_effect_runs(directory))
+      std::cout << "removing " << earlier << " (an earlier discover with --max-effects)\n";
   std::vector<tcpmsim::fit::EffectRun> runs;
   try {
     runs = tcpmsim::fit::discover_effects(
@@ -409,9 +413,14 @@ int discover(const Options& options) {
     if (made) remove_if_empty(directory);
     return kSimulationFailed;
   }
+  if (runs.back().verdict == "failed")
+    std::cerr << "tcpmsim: warning: run " << runs.back().number << " of discover (--max-effects) "
+              << "failed: " << runs.back().failure << "; the runs before it stand\n";
   if (options.max_effects > 1) {
     const std::string path = (std::filesystem::path(directory) / "effects.json").string();
-    std::ofstream(path) << tcpmsim::fit::effect_runs_json(runs, options.max_effects);
+    std::ofstream file(path);
+    file << tcpmsim::fit::effect_runs_json(runs, options.max_effects);
+    if (!file) throw std::runtime_error("cannot write " + path);
     if (!options.quiet)
       std::cout << tcpmsim::fit::effect_runs_summary(runs, options.max_effects) << "wrote " << path
                 << "\n";

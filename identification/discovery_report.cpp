@@ -473,6 +473,10 @@ std::vector<std::string> write_discovery(const std::string& directory, const Dis
   put("baseline.yaml",
       fitted_scenario_yaml(spec_for_yaml(discovery.setup.base, data), discovery.base));
   const CandidateOutcome* verdict = verdict_of(discovery);
+  // Without a verdict's effect there is no augmented model: one an earlier discover left in the
+  // directory must not stand beside this one's files.
+  std::error_code ignored;
+  if (!verdict) std::filesystem::remove(in("augmented.yaml"), ignored);
   if (verdict)
     put("augmented.yaml",
         fitted_scenario_yaml(spec_for_yaml(verdict->spec, data), verdict->result));

@@ -9,6 +9,7 @@
 #include "identification/discovery_report.h"
 #include "identification/json_numbers.h"
 #include "identification/output_error_fit.h"
+#include "sim/config/config_error.h"
 #include "sim/value_check.h"
 
 namespace tcpmsim::fit {
@@ -87,7 +88,9 @@ std::string joined_names(const std::vector<std::string>& names) {
 std::string run_line(const EffectRun& run) {
   std::ostringstream out;
   out << "  " << run.number << "  " << run.verdict << ": ";
-  if (run.named)
+  if (run.named && std::isnan(run.gap_closed))
+    out << "named with the model before it at the noise floor";
+  else if (run.named)
     out << "closes " << number_text(100 * run.gap_closed, 3)
         << " % of the gap above the noise floor" << (run.number > 1 ? " that remained" : "");
   else if (run.verdict == "none")
@@ -107,20 +110,61 @@ std::string effect_run_directory(const std::string& out, int number) {
   return (std::filesystem::path(out) / ("effect" + std::to_string(number))).string();
 }
 
-std::vector<std::string> remove_earlier_effect_runs(const std::string& out) {
-  std::vector<std::string> removed;
+std::vector<std::string> earlier_effect_runs(const std::string& out) {
+  std::vector<std::string> found;
   const std::filesystem::path directory(out);
   std::error_code error;
-  if (std::filesystem::remove(directory / "effects.json", error))
-    removed.push_back((directory / "effects.json").string());
+  // Only an earlier discover with --max-effects wrote effects.json: without it, directories
+  // named effect2, ... are someone else's.
+  if (!std::filesystem::is_regular_file(directory / "effects.json", error)) return found;
+  found.push_back((directory / "effects.json").string());
   for (int number = 2;; ++number) {
     const std::filesystem::path run = effect_run_directory(out, number);
+    if (!std::filesystem::is_directory(run, error)) break;
     // A run's directory holds its discovery.json, or nothing when its base fit failed.
     const bool a_run = std::filesystem::exists(run / "discovery.json", error) ||
                        std::filesystem::is_empty(run, error);
     if (error || !a_run) break;
-    std::filesystem::remove_all(run, error);
-    removed.push_back(run.string());
+    found.push_back(run.string());
+  }
+  return found;
+}
+
+void check_outside_effect_runs(const DiscoverRequest& request, const std::string& out,
+                               int max_effects) {
+  auto replaced = earlier_effect_runs(out);
+  for (int number = 2; number <= max_effects; ++number)
+    replaced.push_back(effect_run_directory(out, number));
+  for (const auto* name : {"augmented.yaml", "baseline.yaml", "traces.h5"})
+    replaced.push_back(in_directory(out, name));
+  // "" when `file` is neither `target` nor inside it, else ".", or its path inside it.
+  const auto relative_to = [](const std::string& file, const std::string& target) {
+    std::error_code error;
+    const auto path = std::filesystem::weakly_canonical(file, error).lexically_normal();
+    const auto base = std::filesystem::weakly_canonical(target, error).lexically_normal();
+    const auto relative = path.lexically_relative(base);
+    return relative.empty() || *relative.begin() == ".." ? std::string() : relative.string();
+  };
+  for (const auto& [option, file] :
+       {std::pair{"--model", request.model_file}, std::pair{"--data", request.data_file}}) {
+    for (const auto& target : replaced) {
+      const std::string relative = relative_to(file, target);
+      if (relative.empty()) continue;
+      throw UsageError(std::string(option) + " " + file +
+                       (relative == "." ? " is a file" : " lies in " + target + ", a directory") +
+                       " this discover writes over (--out " + out +
+                       "); copy it elsewhere or give another --out");
+    }
+  }
+}
+
+std::vector<std::string> remove_earlier_effect_runs(const std::string& out) {
+  std::vector<std::string> removed;
+  for (const auto& path : earlier_effect_runs(out)) {
+    std::error_code error;
+    std::filesystem::remove_all(path, error);
+    if (error) throw std::runtime_error("cannot remove " + path + ": " + error.message());
+    removed.push_back(path);
   }
   return removed;
 }
@@ -138,30 +182,39 @@ DiscoverRequest next_effect_request(DiscoverRequest request, const std::string& 
 std::vector<EffectRun> discover_effects(const DiscoverSetup& first, int max_effects,
                                         const std::string& out, const EffectRunWriter& write,
                                         const EffectRunAnnouncer& announce) {
+  check_outside_effect_runs(first.request, out, max_effects);
   remove_earlier_effect_runs(out);
   std::vector<EffectRun> runs;
   DiscoverRequest next = first.request;
   for (int number = 1; number <= max_effects; ++number) {
     const std::string directory = effect_run_directory(out, number);
-    if (number > 1) {
-      next = next_effect_request(next, in_directory(runs.back().directory, "augmented.yaml"));
-      std::filesystem::create_directories(directory);
-      if (announce) announce(number, directory, next.model_file);
-    }
-    try {
-      const Discovery discovery =
-          discover(number == 1 ? first : setup_discovery(next, first.units));
+    if (number == 1) {
+      const Discovery discovery = discover(first);
       write(discovery, directory);
       runs.push_back(run_of(discovery, number, directory));
       if (!another_effect_due(discovery)) break;
-    } catch (const FitFailure& failure) {
-      if (number == 1) throw;
+      continue;
+    }
+    next = next_effect_request(next, in_directory(runs.back().directory, "augmented.yaml"));
+    if (announce) announce(number, directory, next.model_file);
+    // A later run that cannot go on (its base fit fails, its model does not load from where
+    // the run before wrote it, its files cannot be written) ends the sequence: the runs before
+    // stand, and effects.json says why.
+    try {
+      std::filesystem::create_directories(directory);
+      const Discovery discovery = discover(setup_discovery(next, first.units));
+      write(discovery, directory);
+      runs.push_back(run_of(discovery, number, directory));
+      if (!another_effect_due(discovery)) break;
+    } catch (const std::exception& error) {
       EffectRun failed;
       failed.number = number;
       failed.directory = directory;
       failed.model = next.model_file;
       failed.verdict = "failed";
-      failed.failure = std::string("the base model's fit failed: ") + failure.what();
+      failed.failure = dynamic_cast<const FitFailure*>(&error)
+                           ? std::string("the base model's fit failed: ") + error.what()
+                           : std::string(error.what());
       failed.floor_margin = next.floor_margin;
       runs.push_back(failed);
       break;

@@ -32,9 +32,20 @@ struct EffectRun {
 // Where run `number` writes: `out` for the first, out/effect<number> for the later ones.
 std::string effect_run_directory(const std::string& out, int number);
 
-// Removes what an earlier discover with --max-effects left in `out`: effects.json and the
-// effect<k> directories that hold a discovery.json. A new discover into the same directory must
-// not leave a later run's files beside its own as if it had made them. Returns what it removed.
+// What an earlier discover with --max-effects left in `out`: its effects.json (the marker: without
+// it nothing is taken for a run) and the effect<k> directories, from effect2 on while each holds
+// a discovery.json or nothing (a run whose base fit failed).
+std::vector<std::string> earlier_effect_runs(const std::string& out);
+
+// Throws UsageError when --model or --data lies where this discover writes: in an earlier run's
+// directory it removes, in effect2 .. effect<max_effects>, or as one of the first run's files
+// in `out`. The first run loads them before, but a later run and effects.json would name a
+// file that no longer holds what was read.
+void check_outside_effect_runs(const DiscoverRequest& request, const std::string& out,
+                               int max_effects);
+
+// Removes earlier_effect_runs(out): a new discover into the same directory must not leave an
+// older sequence's later runs beside its own as if it had made them. Returns what it removed.
 std::vector<std::string> remove_earlier_effect_runs(const std::string& out);
 
 // Whether another run is due after `discovery`: it named an effect, and the model with it still
@@ -57,10 +68,11 @@ using EffectRunAnnouncer =
     std::function<void(int number, const std::string& directory, const std::string& model)>;
 
 // Runs discover up to `max_effects` times, the first on `first` into `out` (after
-// remove_earlier_effect_runs), stopping after a
-// run that names no effect or whose model with the effect fits to the noise floor. The first
-// run's failure (FitFailure) propagates; a later run's base fit that fails ends the sequence with
-// that run's verdict "failed" and the reason, the earlier runs' files standing.
+// check_outside_effect_runs and remove_earlier_effect_runs), stopping after a run that names no
+// effect or whose model with the effect fits to the noise floor. The first run's failure
+// propagates (FitFailure and the rest); a later run that fails (its base fit, its model, its
+// files) ends the sequence with that run's verdict "failed" and the reason, the earlier runs'
+// files standing.
 std::vector<EffectRun> discover_effects(const DiscoverSetup& first, int max_effects,
                                         const std::string& out, const EffectRunWriter& write,
                                         const EffectRunAnnouncer& announce = {});
@@ -70,8 +82,9 @@ std::vector<EffectRun> discover_effects(const DiscoverSetup& first, int max_effe
 std::string effect_runs_summary(const std::vector<EffectRun>& runs, int max_effects);
 
 // effects.json: {"max_effects", "runs": [{"run", "directory", "model", "verdict", "gap_closed",
-// "still_missed", "failure"}...], "effects": [names], "model": the augmented.yaml carrying every
-// named effect (null without one), "at_noise_floor": whether that model fits every output to
+// "still_missed", "failure"}...], "effects": [names], "model": the file carrying every named
+// effect (the last naming run's augmented.yaml, or a later run's baseline.yaml; null without
+// one), "at_noise_floor": whether that model fits every output to
 // within the margin (null without one)}.
 std::string effect_runs_json(const std::vector<EffectRun>& runs, int max_effects);
 

@@ -1,12 +1,12 @@
 // discover --max-effects: one effect a run, each run from the model the one before wrote, until
 // the model fits to the noise floor (identification/discovery_runs.h).
 #include <catch2/catch.hpp>
-#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "identification/discovery_runs.h"
+#include "sim/config/config_error.h"
 #include "tests/support/test_support.h"
 
 using namespace tcpmsim;
@@ -155,4 +155,47 @@ TEST_CASE("A discover into a directory removes the later runs an earlier discove
   CHECK(std::filesystem::exists(out / "discovery.json"));  // the first run's, written over
   CHECK(std::filesystem::exists(out / "notes.txt"));
   CHECK(fit::remove_earlier_effect_runs(out.string()).empty());
+}
+
+TEST_CASE("Directories named like later runs are someone else's without an earlier effects.json") {
+  const std::filesystem::path out = tcpmsim::testing::process_directory("no_earlier_runs");
+  std::filesystem::create_directories(out / "effect2");
+  std::ofstream(out / "effect2" / "discovery.json") << "{}\n";
+  std::ofstream(out / "effect3") << "a file, not a run\n";
+  CHECK(fit::earlier_effect_runs(out.string()).empty());
+  CHECK(fit::remove_earlier_effect_runs(out.string()).empty());
+  CHECK(std::filesystem::exists(out / "effect2" / "discovery.json"));
+  // With the marker, a file named like a run is not one: the runs end before it.
+  std::filesystem::remove_all(out / "effect2");
+  std::ofstream(out / "effects.json") << "{}\n";
+  CHECK(fit::remove_earlier_effect_runs(out.string()) ==
+        std::vector<std::string>{(out / "effects.json").string()});
+  CHECK(std::filesystem::exists(out / "effect3"));
+}
+
+TEST_CASE("A model or measurement where discover writes is refused before any run") {
+  const std::filesystem::path out = tcpmsim::testing::process_directory("inputs_in_out");
+  fit::DiscoverRequest request;
+  request.model_file = (out / "augmented.yaml").string();
+  request.data_file = "measured.csv";
+  // The first run writes its augmented model over it.
+  CHECK_THROWS_WITH(fit::check_outside_effect_runs(request, out.string(), 1),
+                    Catch::Contains("--model " + request.model_file +
+                                    " is a file this discover writes over (--out " + out.string() +
+                                    "); copy it elsewhere or give another --out"));
+  // A later run writes its directory over it.
+  request.model_file = (out / "effect2" / "augmented.yaml").string();
+  CHECK_NOTHROW(fit::check_outside_effect_runs(request, out.string(), 1));
+  CHECK_THROWS_AS(fit::check_outside_effect_runs(request, out.string(), 2), UsageError);
+  CHECK_THROWS_WITH(fit::check_outside_effect_runs(request, out.string(), 2),
+                    Catch::Contains("lies in " + (out / "effect2").string() +
+                                    ", a directory this "
+                                    "discover writes over"));
+  request.model_file = "model.yaml";
+  request.data_file = (out / "effect3" / "measured.csv").string();
+  CHECK_THROWS_WITH(fit::check_outside_effect_runs(request, out.string(), 3),
+                    Catch::StartsWith("--data "));
+  // Beside the output directory, or in a directory merely named like it, is fine.
+  request.data_file = out.string() + "_data/measured.csv";
+  CHECK_NOTHROW(fit::check_outside_effect_runs(request, out.string(), 3));
 }
