@@ -788,8 +788,8 @@ int main(int argc, char** argv) {
   discover_command
       ->add_option(
           "--min-gap-closed", request.min_gap_closed,
-          "Share of the gap above the noise floor a named effect must close, on the outputs "
-          "the base model misses")
+          "Share of the gap above the noise floor a named effect must close: of the outputs "
+          "the base model misses, or of all combined where it misses none")
       ->check(CLI::Range(0.0, 1.0));
   discover_command->add_option("--set", options.overrides, "Override a value of the model")
       ->type_name("KEY.PATH=VALUE");

@@ -124,9 +124,9 @@ void score(CandidateOutcome& outcome, const Baseline& base, const std::vector<do
       change_norm * residual_norm > 0 ? projection / (change_norm * residual_norm) : 0.0;
   outcome.signature_z = coloured_norm > 0 ? projection / coloured_norm : 0.0;
   outcome.validation_change = change;
-  // Where the base model misses an output by more than the noise (so `none` is ruled out), an
-  // effect that closes only a sliver of that gap is not what is missing, however significant
-  // its BIC: naming it would hide the rest.
+  // An effect that closes only a sliver of the gap above the noise floor is not what is
+  // missing, however significant its BIC: where the base model misses an output, naming it
+  // would hide the rest; where it is at the floor, it names a trace of the model's own misfit.
   outcome.gap_closed =
       above_noise_gap_closed(base.result.validation.rmse, result.validation.rmse, setup.floor);
   outcome.missed_gap_closed = missed_gap_closed(base.result.validation.rmse, result.validation.rmse,
@@ -134,8 +134,8 @@ void score(CandidateOutcome& outcome, const Baseline& base, const std::vector<do
   outcome.significant =
       outcome.delta_bic < -request.bic_threshold && outcome.gap_shrink > request.min_gap_shrink &&
       outcome.signature_z >= request.min_signature &&
-      closes_enough_of_missed_gap(base.result.validation.rmse, result.validation.rmse, setup.floor,
-                                  request.floor_margin, request.min_gap_closed);
+      closes_enough_of_gap(base.result.validation.rmse, result.validation.rmse, setup.floor,
+                           request.floor_margin, request.min_gap_closed);
 }
 
 void rank(std::vector<CandidateOutcome>& candidates) {
@@ -397,11 +397,11 @@ double missed_gap_closed(const std::vector<double>& base_rmse,
   return base.empty() ? kNaN : above_noise_gap_closed(base, augmented, missed_floor);
 }
 
-bool closes_enough_of_missed_gap(const std::vector<double>& base_rmse,
-                                 const std::vector<double>& augmented_rmse,
-                                 const std::vector<double>& floor, double margin,
-                                 double min_share) {
-  const double share = missed_gap_closed(base_rmse, augmented_rmse, floor, margin);
+bool closes_enough_of_gap(const std::vector<double>& base_rmse,
+                          const std::vector<double>& augmented_rmse,
+                          const std::vector<double>& floor, double margin, double min_share) {
+  double share = missed_gap_closed(base_rmse, augmented_rmse, floor, margin);
+  if (std::isnan(share)) share = above_noise_gap_closed(base_rmse, augmented_rmse, floor);
   return std::isnan(share) || share >= min_share;
 }
 

@@ -116,12 +116,16 @@ double missed_gap_closed(const std::vector<double>& base_rmse,
                          const std::vector<double>& augmented_rmse,
                          const std::vector<double>& floor, double margin);
 
-// The rule a significant candidate must also pass: where the base model misses an output (see
-// missed_gap_closed), the candidate closes at least `min_share` of that gap; where it misses
-// none, nothing is asked.
-bool closes_enough_of_missed_gap(const std::vector<double>& base_rmse,
-                                 const std::vector<double>& augmented_rmse,
-                                 const std::vector<double>& floor, double margin, double min_share);
+// The rule a significant candidate must also pass: it closes at least `min_share` of the gap
+// above the noise floor. Where the base model misses an output, of that output's gap (see
+// missed_gap_closed); where it misses none but lies above the floors combined, of that combined
+// gap (above_noise_gap_closed): at the floor too, an effect that takes a sliver off what the
+// base model leaves is not what is missing (a model is never exactly the data's law, and at low
+// noise a candidate that absorbs a few percent of that rest is significant by BIC and z alone);
+// at or below the floors, nothing is asked.
+bool closes_enough_of_gap(const std::vector<double>& base_rmse,
+                          const std::vector<double>& augmented_rmse,
+                          const std::vector<double>& floor, double margin, double min_share);
 
 // Whether each output's base validation RMSE is at its noise floor: rmse <= (1 + margin) floor.
 // Whiteness is not required. A model is never exactly the data's law, and with thousands of

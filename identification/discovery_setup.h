@@ -33,8 +33,9 @@ struct DiscoverRequest {
   std::vector<std::string> noise;
   // `none` needs every output's base validation RMSE within this fraction above its floor.
   double floor_margin = 0.25;
-  // Where the base model misses by more than that, a significant candidate must also close this
-  // share of the gap above the floor to be named (else the verdict is unexplained).
+  // A significant candidate must also close this share of the gap above the floor to be named:
+  // of the outputs the base model misses by more than the margin, or of all combined where it
+  // misses none (closes_enough_of_gap).
   double min_gap_closed = 0.2;
   // Significant candidates within bic_threshold of the best whose validation changes correlate
   // by at least this are aliases: the first in the catalogue's order is named

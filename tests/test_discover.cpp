@@ -112,7 +112,7 @@ TEST_CASE(
   CHECK(fit::missed_gap_closed(base, sliver, floor, 0.25) == Approx(force_share).epsilon(1e-9));
   CHECK(force_share < 0.01);
   // So it is not significant, while combined with L* (the rule before) it was let through.
-  CHECK_FALSE(fit::closes_enough_of_missed_gap(base, sliver, floor, 0.25, 0.2));
+  CHECK_FALSE(fit::closes_enough_of_gap(base, sliver, floor, 0.25, 0.2));
   // Closing the force's gap whole is a share of one, whatever L* does within its floor.
   CHECK(fit::missed_gap_closed(base, {2.0213e-3, 5.0e-4}, floor, 0.25) ==
         Approx(1.0).epsilon(1e-9));
@@ -121,10 +121,31 @@ TEST_CASE(
   const std::vector<double> halfway = {3e-3, 0.75e-3};
   CHECK(fit::missed_gap_closed(both, halfway, floor, 0.25) ==
         Approx(fit::above_noise_gap_closed(both, halfway, floor)).epsilon(1e-12));
-  CHECK(fit::closes_enough_of_missed_gap(base, {2.0213e-3, 5.0e-4}, floor, 0.25, 0.2));
-  // A base at its floors misses nothing: no share is asked of a candidate.
-  CHECK(std::isnan(fit::missed_gap_closed({2.1e-3, 5e-4}, {2.0e-3, 5e-4}, floor, 0.25)));
-  CHECK(fit::closes_enough_of_missed_gap({2.1e-3, 5e-4}, {2.0999e-3, 5e-4}, floor, 0.25, 0.2));
+  CHECK(fit::closes_enough_of_gap(base, {2.0213e-3, 5.0e-4}, floor, 0.25, 0.2));
+}
+
+TEST_CASE(
+    "At the noise floor a named effect closes its share of what the base model leaves above "
+    "it") {
+  // The independent generator's data without an effect at 1 mN (seed 4, build ac3b316): the base
+  // model within 2 % of the floors (its law is not the generator's: power held on another grid),
+  // and a heat sink that took 0.1 % off the validation error was significant (delta BIC -19.7,
+  // z 4.4) while closing 6.3 % of the gap above the floors: a false alarm.
+  const std::vector<double> floor = {1.002296e-3, 4.919159e-4};
+  const std::vector<double> base = {1.021153e-3, 5.000546e-4};
+  const std::vector<double> heat_sink = {1.019850e-3, 5.000546e-4};
+  CHECK(fit::at_noise_floor(base, floor, 0.25) == std::vector<bool>{true, true});
+  CHECK(std::isnan(fit::missed_gap_closed(base, heat_sink, floor, 0.25)));
+  const double share = fit::above_noise_gap_closed(base, heat_sink, floor);
+  CHECK(share > 0.0);
+  CHECK(share < 0.2);
+  CHECK_FALSE(fit::closes_enough_of_gap(base, heat_sink, floor, 0.25, 0.2));
+  // An effect that takes the model to its floors closes the whole gap.
+  CHECK(fit::closes_enough_of_gap(base, floor, floor, 0.25, 0.2));
+  // A base at or below its floors combined leaves no gap: nothing is asked.
+  const std::vector<double> below = {0.99e-3, 4.9e-4};
+  CHECK(std::isnan(fit::above_noise_gap_closed(below, {0.989e-3, 4.9e-4}, floor)));
+  CHECK(fit::closes_enough_of_gap(below, {0.989e-3, 4.9e-4}, floor, 0.25, 0.2));
 }
 
 TEST_CASE("Spikes are replaced; a noisy smooth signal and a noisy staircase are left alone") {
