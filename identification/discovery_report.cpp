@@ -88,6 +88,24 @@ std::string text(double value, int digits = 3) {
   return number_text(value, digits);
 }
 
+// Under a verdict of none: the best candidate, when the BIC favours it but it closes less of the
+// gap the base model leaves above the floor than a named effect must (--min-gap-closed), so
+// that its delta BIC in the table is not read as a missed effect.
+void write_sliver_at_floor(std::ostream& out, const Discovery& discovery) {
+  if (discovery.candidates.empty()) return;
+  const CandidateOutcome& best = discovery.candidates.front();
+  const auto& request = discovery.setup.request;
+  if (best.status != "fitted" || best.significant || !(best.delta_bic < -request.bic_threshold) ||
+      !(best.gap_closed < request.min_gap_closed))
+    return;
+  out << "\nThe best candidate, " << best.name << " (" << best.member << "), lowers the BIC by "
+      << text(-best.delta_bic, 3) << " (signature z " << text(best.signature_z, 2)
+      << ") but closes " << text(100 * best.gap_closed, 2)
+      << " % of the gap the base model leaves above the noise floor, under the "
+      << text(100 * request.min_gap_closed) << " % a named effect must close (--min-gap-closed): "
+      << "a trace of the model's own misfit, not a missing effect.\n";
+}
+
 // Under a verdict of none: the outputs whose residual is not white, with the size of their
 // structured part and what it follows, so that none is not read as "the residual is noise".
 void write_structured_rest(std::ostream& out, const Discovery& discovery) {
@@ -420,6 +438,7 @@ std::string discovery_report(const Discovery& discovery) {
            "within "
         << text(100 * request.floor_margin) << " % of its floor), and no candidate improves it "
         << "significantly.\n";
+    write_sliver_at_floor(out, discovery);
     write_structured_rest(out, discovery);
   } else {
     out << "**unexplained**: the base model misses by more than the noise, and no candidate of "

@@ -280,6 +280,20 @@ TEST_CASE("A short discover goes through every stage and writes every file it na
                              "missing. Run discover again with `augmented.yaml` as `--model`"));
   CHECK_THAT(fit::discovery_json(still_missing),
              Catch::Contains("\"at_noise_floor\": {\n      \"force\": false"));
+  // Under none, a candidate the BIC favours that closes a sliver of the gap above the floor is
+  // said to be one, so that its delta BIC is not read as a missed effect.
+  fit::Discovery sliver = found;
+  sliver.kind = fit::VerdictKind::none;
+  sliver.verdict = "none";
+  sliver.candidates.front().significant = false;
+  sliver.candidates.front().delta_bic = -19.7;
+  sliver.candidates.front().gap_closed = 0.063;
+  CHECK_THAT(fit::discovery_report(sliver),
+             Catch::Contains("lowers the BIC by 19.7 (signature z ") &&
+                 Catch::Contains(") but closes 6.3 % of the gap the base model leaves above the "
+                                 "noise floor, under the 20 % a named effect must close"));
+  sliver.candidates.front().gap_closed = 0.5;
+  CHECK_THAT(fit::discovery_report(sliver), !Catch::Contains("a trace of the model's own misfit"));
   fit::Discovery at_floor = found;
   at_floor.candidates.front().validation_rmse[0] = floor;
   CHECK_THAT(fit::discovery_summary(at_floor), !Catch::Contains("still misses"));
