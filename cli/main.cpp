@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <thread>
 
 #include <unistd.h>
@@ -25,6 +26,7 @@
 #include "identification/discovery_runs.h"
 #include "identification/effect_catalogue.h"
 #include "identification/fit_report.h"
+#include "identification/joint_refit.h"
 #include "kinds/standard_kinds.h"
 #include "sim/config/config_error.h"
 #include "sim/io/hdf5_files.h"
@@ -380,6 +382,30 @@ void write_discover_run(const Options& options, const tcpmsim::fit::Discovery& d
   }
 }
 
+// After --max-effects named two or more effects: all of them refitted together with the base
+// laws, into <out>/joint (fit.json, fitted.yaml, fit.h5). A refit that cannot be made is a
+// warning: the runs' model stands.
+std::optional<tcpmsim::fit::JointRefit> refit_named_effects(
+    const Options& options, const tcpmsim::fit::DiscoverRequest& request,
+    const std::vector<tcpmsim::fit::EffectRun>& runs, const std::string& directory,
+    const std::shared_ptr<const tcpmsim::UnitSystem>& units) {
+  if (!tcpmsim::fit::joint_refit_due(runs)) return std::nullopt;
+  if (!options.quiet) {
+    std::cout << "\nrefitting the named effects together with the base laws\n";
+    std::cout.flush();
+  }
+  auto joint = tcpmsim::fit::refit_jointly(request, runs, directory, units);
+  if (joint.failure.empty()) {
+    tcpmsim::fit::write_fit_outputs(
+        joint.directory, joint.spec, joint.result,
+        tcpmsim::file_provenance(options.invocation, {joint.start_model}, {}, units));
+  } else {
+    std::cerr << "tcpmsim: warning: the joint refit of the named effects failed: " << joint.failure
+              << "; the runs' model stands\n";
+  }
+  return joint;
+}
+
 // The missing effect: a base model fitted, diagnosed, and refitted with each named effect; with
 // --max-effects N, again from the model with it while that still misses the noise floor.
 int discover(const Options& options) {
@@ -417,13 +443,15 @@ int discover(const Options& options) {
     std::cerr << "tcpmsim: warning: run " << runs.back().number << " of discover (--max-effects) "
               << "failed: " << runs.back().failure << "; the runs before it stand\n";
   if (options.max_effects > 1) {
+    const auto joint = refit_named_effects(options, request, runs, directory, units);
+    const auto* refit = joint ? &*joint : nullptr;
     const std::string path = (std::filesystem::path(directory) / "effects.json").string();
     std::ofstream file(path);
-    file << tcpmsim::fit::effect_runs_json(runs, options.max_effects);
+    file << tcpmsim::fit::effect_runs_json(runs, options.max_effects, refit);
     if (!file) throw std::runtime_error("cannot write " + path);
     if (!options.quiet)
-      std::cout << tcpmsim::fit::effect_runs_summary(runs, options.max_effects) << "wrote " << path
-                << "\n";
+      std::cout << tcpmsim::fit::effect_runs_summary(runs, options.max_effects, refit) << "wrote "
+                << path << "\n";
   }
   // The first run's verdict: an effect named (0), the base model at the noise floor, or a miss
   // no candidate explains. What later runs found is in effects.json.
@@ -816,7 +844,8 @@ int main(int argc, char** argv) {
   discover_command
       ->add_option("--max-effects", options.max_effects,
                    "Effects sought, one a run: while the model with the named effect still "
-                   "misses the noise floor, discover again from it (into <out>/effect2, ...)")
+                   "misses the noise floor, discover again from it (into <out>/effect2, ...); "
+                   "two or more named are refitted together (into <out>/joint)")
       ->check(CLI::Range(1, 10));
   discover_command->add_option("-j,--jobs", options.fit_jobs, "Candidates fitted at once (threads)")
       ->check(CLI::Range(1, 256));

@@ -143,20 +143,24 @@ std::string aliases_text(const CandidateOutcome& verdict) {
 
 }  // namespace
 
-std::string missed_with_effect(const Discovery& discovery) {
-  const CandidateOutcome* verdict = verdict_of(discovery);
-  if (!verdict) return "";
-  const auto& floor = discovery.setup.floor;
-  const auto at_noise =
-      at_noise_floor(verdict->validation_rmse, floor, discovery.setup.request.floor_margin);
+std::string outputs_above_floor(const std::vector<FitOutput>& outputs,
+                                const std::vector<double>& rmse, const std::vector<double>& floor,
+                                double margin) {
+  const auto at_noise = at_noise_floor(rmse, floor, margin);
   std::string text;
   for (std::size_t k = 0; k < at_noise.size(); ++k) {
     if (at_noise[k]) continue;
     if (!text.empty()) text += ", ";
-    text += problem_of(discovery).outputs[k].channel + " " +
-            number_text(verdict->validation_rmse[k] / floor[k], 3) + " times";
+    text += outputs[k].channel + " " + number_text(rmse[k] / floor[k], 3) + " times";
   }
   return text;
+}
+
+std::string missed_with_effect(const Discovery& discovery) {
+  const CandidateOutcome* verdict = verdict_of(discovery);
+  if (!verdict) return "";
+  return outputs_above_floor(problem_of(discovery).outputs, verdict->validation_rmse,
+                             discovery.setup.floor, discovery.setup.request.floor_margin);
 }
 
 std::string discovery_json(const Discovery& discovery) {

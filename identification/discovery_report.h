@@ -22,6 +22,12 @@ std::string discovery_json(const Discovery& discovery);
 // 1.4 times". Another effect may be missing there. "" without a named effect or a miss.
 std::string missed_with_effect(const Discovery& discovery);
 
+// The outputs whose validation RMSE lies beyond (1 + margin) times their floor, in floors:
+// "force 3.1 times, inductance_measure 1.4 times"; "" when none does.
+std::string outputs_above_floor(const std::vector<FitOutput>& outputs,
+                                const std::vector<double>& rmse, const std::vector<double>& floor,
+                                double margin);
+
 // A short human-readable report of the evidence (Markdown).
 std::string discovery_report(const Discovery& discovery);
 

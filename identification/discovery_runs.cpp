@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "identification/discovery_report.h"
+#include "identification/joint_refit.h"
 #include "identification/json_numbers.h"
 #include "identification/output_error_fit.h"
 #include "sim/config/config_error.h"
@@ -30,39 +31,13 @@ EffectRun run_of(const Discovery& discovery, int number, const std::string& dire
   run.gap_closed = discovery.gap_closed;
   run.still_missed = missed_with_effect(discovery);
   run.floor_margin = discovery.setup.request.floor_margin;
-  return run;
-}
-
-// The model at the end of the runs, with every named effect: the last run's augmented model when
-// it named one; after a later run that named none, that run's base model as it refitted it (the
-// effects the runs before named, every base parameter refitted with them); after a failed run,
-// the augmented model of the run before. Empty when no run named an effect.
-struct FinalModel {
-  std::string path;
-  std::vector<std::string> effects;
-  bool at_floor = false;     // fits every output to within the margin of its floor
-  std::string still_missed;  // for a named effect's model that does not
-};
-
-FinalModel final_model(const std::vector<EffectRun>& runs) {
-  FinalModel model;
-  for (const auto& run : runs)
-    if (run.named) model.effects.push_back(run.verdict);
-  if (model.effects.empty()) return model;
-  const EffectRun& last = runs.back();
-  if (last.named) {
-    model.path = in_directory(last.directory, "augmented.yaml");
-    model.still_missed = last.still_missed;
-    model.at_floor = last.still_missed.empty();
-  } else if (last.verdict == "failed") {
-    const EffectRun& before = runs[runs.size() - 2];
-    model.path = in_directory(before.directory, "augmented.yaml");
-    model.still_missed = before.still_missed;
-  } else {
-    model.path = in_directory(last.directory, "baseline.yaml");
-    model.at_floor = last.verdict == "none";
+  if (run.named) {
+    // The named candidate frees the base model's parameters, then its effect's.
+    const auto& freed = discovery.candidates.front().spec.problem.parameters;
+    run.effect_parameters.assign(freed.begin() + static_cast<long>(discovery.base.estimates.size()),
+                                 freed.end());
   }
-  return model;
+  return run;
 }
 
 // "hysteresis and slow_relaxation"; a family named in two runs once, with its count:
@@ -105,6 +80,33 @@ std::string run_line(const EffectRun& run) {
 
 }  // namespace
 
+FinalModel final_model(const std::vector<EffectRun>& runs, const JointRefit* joint) {
+  FinalModel model;
+  for (const auto& run : runs)
+    if (run.named) model.effects.push_back(run.verdict);
+  if (model.effects.empty()) return model;
+  if (joint && joint->failure.empty() && joint->better) {
+    model.path = in_directory(joint->directory, "fitted.yaml");
+    model.at_floor = joint->at_floor;
+    model.still_missed = joint->still_missed;
+    return model;
+  }
+  const EffectRun& last = runs.back();
+  if (last.named) {
+    model.path = in_directory(last.directory, "augmented.yaml");
+    model.still_missed = last.still_missed;
+    model.at_floor = last.still_missed.empty();
+  } else if (last.verdict == "failed") {
+    const EffectRun& before = runs[runs.size() - 2];
+    model.path = in_directory(before.directory, "augmented.yaml");
+    model.still_missed = before.still_missed;
+  } else {
+    model.path = in_directory(last.directory, "baseline.yaml");
+    model.at_floor = last.verdict == "none";
+  }
+  return model;
+}
+
 std::string effect_run_directory(const std::string& out, int number) {
   if (number <= 1) return out;
   return (std::filesystem::path(out) / ("effect" + std::to_string(number))).string();
@@ -127,6 +129,12 @@ std::vector<std::string> earlier_effect_runs(const std::string& out) {
     if (error || !a_run) break;
     found.push_back(run.string());
   }
+  // The joint refit's directory holds its fit.json, or nothing when the refit failed.
+  const std::filesystem::path joint = directory / "joint";
+  if (std::filesystem::is_directory(joint, error) &&
+      (std::filesystem::exists(joint / "fit.json", error) ||
+       std::filesystem::is_empty(joint, error)))
+    found.push_back(joint.string());
   return found;
 }
 
@@ -135,6 +143,7 @@ void check_outside_effect_runs(const DiscoverRequest& request, const std::string
   auto replaced = earlier_effect_runs(out);
   for (int number = 2; number <= max_effects; ++number)
     replaced.push_back(effect_run_directory(out, number));
+  if (max_effects > 1) replaced.push_back(in_directory(out, "joint"));
   for (const auto* name : {"augmented.yaml", "baseline.yaml", "traces.h5"})
     replaced.push_back(in_directory(out, name));
   // "" when `file` is neither `target` nor inside it, else ".", or its path inside it.
@@ -223,11 +232,13 @@ std::vector<EffectRun> discover_effects(const DiscoverSetup& first, int max_effe
   return runs;
 }
 
-std::string effect_runs_summary(const std::vector<EffectRun>& runs, int max_effects) {
+std::string effect_runs_summary(const std::vector<EffectRun>& runs, int max_effects,
+                                const JointRefit* joint) {
   std::ostringstream out;
   out << "\neffects sought one a run (--max-effects " << max_effects << "):\n";
   for (const auto& run : runs) out << run_line(run);
-  const FinalModel model = final_model(runs);
+  if (joint) out << joint_refit_summary(*joint);
+  const FinalModel model = final_model(runs, joint);
   if (model.effects.empty()) {
     out << "no effect named\n";
     return out.str();
@@ -247,7 +258,8 @@ std::string effect_runs_summary(const std::vector<EffectRun>& runs, int max_effe
   return out.str();
 }
 
-std::string effect_runs_json(const std::vector<EffectRun>& runs, int max_effects) {
+std::string effect_runs_json(const std::vector<EffectRun>& runs, int max_effects,
+                             const JointRefit* joint) {
   nlohmann::json json;
   json["max_effects"] = max_effects;
   json["runs"] = nlohmann::json::array();
@@ -260,10 +272,11 @@ std::string effect_runs_json(const std::vector<EffectRun>& runs, int max_effects
                             {"still_missed", run.still_missed},
                             {"failure", run.failure}});
   }
-  const FinalModel model = final_model(runs);
+  const FinalModel model = final_model(runs, joint);
   json["effects"] = model.effects;
   json["model"] = model.path.empty() ? nlohmann::json() : nlohmann::json(model.path);
   json["at_noise_floor"] = model.path.empty() ? nlohmann::json() : nlohmann::json(model.at_floor);
+  json["joint"] = joint ? joint_refit_json(*joint) : nlohmann::json();
   return json.dump(2) + "\n";
 }
 

@@ -27,20 +27,39 @@ struct EffectRun {
   std::string still_missed;
   std::string failure;         // why a later run's base fit failed ("" otherwise)
   double floor_margin = 0.25;  // --floor-margin: "at the floor" is within this fraction above it
+  // The named effect's parameters, as its refit freed them (paths in the augmented model, bounds
+  // from the catalogue): what a joint refit of every named effect frees again (joint_refit.h).
+  std::vector<FitParameter> effect_parameters;
 };
+
+// The model at the end of the runs, with every named effect: the last run's augmented model when
+// it named one; after a later run that named none, that run's base model as it refitted it (the
+// effects the runs before named, every base parameter refitted with them); after a failed run,
+// the augmented model of the run before. With a joint refit that validates no worse, its model
+// (joint_refit.h). Empty when no run named an effect.
+struct FinalModel {
+  std::string path;
+  std::vector<std::string> effects;
+  bool at_floor = false;     // fits every output to within the margin of its floor
+  std::string still_missed;  // for a named effect's model that does not
+};
+
+struct JointRefit;
+FinalModel final_model(const std::vector<EffectRun>& runs, const JointRefit* joint = nullptr);
 
 // Where run `number` writes: `out` for the first, out/effect<number> for the later ones.
 std::string effect_run_directory(const std::string& out, int number);
 
 // What an earlier discover with --max-effects left in `out`: its effects.json (the marker: without
-// it nothing is taken for a run) and the effect<k> directories, from effect2 on while each holds
-// a discovery.json or nothing (a run whose base fit failed).
+// it nothing is taken for a run), the effect<k> directories, from effect2 on while each holds
+// a discovery.json or nothing (a run whose base fit failed), and its joint refit's directory
+// (joint, holding a fit.json or nothing).
 std::vector<std::string> earlier_effect_runs(const std::string& out);
 
 // Throws UsageError when --model or --data lies where this discover writes: in an earlier run's
 // directory it removes, in effect2 .. effect<max_effects>, or as one of the first run's files
-// in `out`. The first run loads them before, but a later run and effects.json would name a
-// file that no longer holds what was read.
+// in `out`, or in `out`/joint. The first run loads them before, but a later run and effects.json
+// would name a file that no longer holds what was read.
 void check_outside_effect_runs(const DiscoverRequest& request, const std::string& out,
                                int max_effects);
 
@@ -77,15 +96,19 @@ std::vector<EffectRun> discover_effects(const DiscoverSetup& first, int max_effe
                                         const std::string& out, const EffectRunWriter& write,
                                         const EffectRunAnnouncer& announce = {});
 
-// What `tcpmsim discover --max-effects` prints after the runs: a line per run, the model that
-// carries every named effect and whether it fits to the noise floor, and why the runs stopped.
-std::string effect_runs_summary(const std::vector<EffectRun>& runs, int max_effects);
+// What `tcpmsim discover --max-effects` prints after the runs: a line per run, the joint refit
+// when there is one, the model that carries every named effect and whether it fits to the noise
+// floor, and why the runs stopped.
+std::string effect_runs_summary(const std::vector<EffectRun>& runs, int max_effects,
+                                const JointRefit* joint = nullptr);
 
 // effects.json: {"max_effects", "runs": [{"run", "directory", "model", "verdict", "gap_closed",
 // "still_missed", "failure"}...], "effects": [names], "model": the file carrying every named
-// effect (the last naming run's augmented.yaml, or a later run's baseline.yaml; null without
-// one), "at_noise_floor": whether that model fits every output to
-// within the margin (null without one)}.
-std::string effect_runs_json(const std::vector<EffectRun>& runs, int max_effects);
+// effect (final_model; null without one), "at_noise_floor": whether that model fits every output
+// to within the margin (null without one), "joint": the joint refit ({"directory", "model",
+// "start_model", "effect_parameters", "identification_rmse" and "validation_rmse" {channel:
+// [start, refitted]}, "better", "at_noise_floor", "failure"}; null without one)}.
+std::string effect_runs_json(const std::vector<EffectRun>& runs, int max_effects,
+                             const JointRefit* joint = nullptr);
 
 }  // namespace tcpmsim::fit

@@ -202,6 +202,10 @@ TEST_CASE("A run whose effect still misses the floor is followed by one from the
   REQUIRE(seen.size() == 2);
   CHECK(runs[0].verdict == "hysteresis");
   CHECK(runs[0].directory == out);
+  // The named effect's parameters as its refit freed them, which a joint refit frees again.
+  REQUIRE(runs[0].effect_parameters.size() == 2);
+  CHECK(runs[0].effect_parameters[0].path == "muscle.effects[0].stiffness");
+  CHECK(runs[0].effect_parameters[1].path == "muscle.effects[0].radius");
   CHECK(runs[1].directory == out + "/effect2");
   const std::string first_model = out + "/augmented.yaml";
   CHECK(runs[1].model == first_model);
