@@ -396,10 +396,16 @@ std::optional<tcpmsim::fit::JointRefit> refit_named_effects(
   }
   auto joint = tcpmsim::fit::refit_jointly(request, runs, directory, units);
   if (joint.failure.empty()) {
-    tcpmsim::fit::write_fit_outputs(
-        joint.directory, joint.spec, joint.result,
-        tcpmsim::file_provenance(options.invocation, {joint.start_model}, {}, units));
-  } else {
+    try {
+      tcpmsim::fit::write_fit_outputs(
+          joint.directory, joint.spec, joint.result,
+          tcpmsim::file_provenance(options.invocation, {joint.start_model}, {}, units));
+    } catch (const std::exception& error) {
+      joint.failure = std::string("its files: ") + error.what();
+      joint.better = false;
+    }
+  }
+  if (!joint.failure.empty()) {
     std::cerr << "tcpmsim: warning: the joint refit of the named effects failed: " << joint.failure
               << "; the runs' model stands\n";
   }

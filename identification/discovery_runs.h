@@ -105,9 +105,8 @@ std::string effect_runs_summary(const std::vector<EffectRun>& runs, int max_effe
 // effects.json: {"max_effects", "runs": [{"run", "directory", "model", "verdict", "gap_closed",
 // "still_missed", "failure"}...], "effects": [names], "model": the file carrying every named
 // effect (final_model; null without one), "at_noise_floor": whether that model fits every output
-// to within the margin (null without one), "joint": the joint refit ({"directory", "model",
-// "start_model", "effect_parameters", "identification_rmse" and "validation_rmse" {channel:
-// [start, refitted]}, "better", "at_noise_floor", "failure"}; null without one)}.
+// to within the margin (null without one), "joint": the joint refit (joint_refit_json; null
+// without one)}.
 std::string effect_runs_json(const std::vector<EffectRun>& runs, int max_effects,
                              const JointRefit* joint = nullptr);
 

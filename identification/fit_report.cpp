@@ -162,8 +162,13 @@ std::vector<std::string> write_fit_outputs(const std::string& directory, const F
   const auto in = [&](const char* name) {
     return (std::filesystem::path(directory) / name).string();
   };
-  std::ofstream(in("fit.json")) << fit_json(spec, result);
-  std::ofstream(in("fitted.yaml")) << fitted_scenario_yaml(spec, result);
+  for (const auto& [name, content] :
+       {std::pair{"fit.json", fit_json(spec, result)},
+        std::pair{"fitted.yaml", fitted_scenario_yaml(spec, result)}}) {
+    std::ofstream file(in(name));
+    file << content;
+    if (!file) throw std::runtime_error(std::string("cannot write ") + in(name));
+  }
 
   const TimeWindow whole{spec.problem.identification.from,
                          std::max(spec.problem.identification.to, spec.problem.validation.to)};

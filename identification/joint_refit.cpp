@@ -61,21 +61,30 @@ JointRefit refit_jointly(const DiscoverRequest& first, const std::vector<EffectR
     const std::vector<double> noise = initial_noise(problem);
     for (std::size_t k = 0; k < noise.size(); ++k) problem.outputs[k].noise = noise[k];
     // From the model's values alone (no drawn starts): every named effect sits where its run
-    // fitted it, and the fit can only go down from there.
+    // fitted it, and the fit can only go down from there. A value its run left on a bound can lie
+    // a rounding step beyond it after the trip through the unit interval, outside the box the
+    // optimiser searches: it starts on the bound.
     auto& settings = joint.spec.settings;
     settings.starts = 0;
     settings.refine = 1;
     settings.start.clear();
+    const Context context = problem.model->make_context();
+    for (const auto& parameter : problem.parameters)
+      settings.start.push_back(
+          std::clamp(context.parameter(parameter.path), parameter.lower, parameter.upper));
     joint.result = fit_model(problem, settings);
     std::vector<double> start;
     for (const auto& estimate : joint.result.estimates) start.push_back(estimate.initial);
     joint.start_identification_rmse = score_window(problem, start, problem.identification).rmse;
     joint.start_validation_rmse = score_window(problem, start, problem.validation).rmse;
-    joint.better = combined_rmse(joint.result.validation.rmse, joint.floor) <=
-                   combined_rmse(joint.start_validation_rmse, joint.floor);
     const auto at_noise =
         at_noise_floor(joint.result.validation.rmse, joint.floor, first.floor_margin);
     joint.at_floor = std::all_of(at_noise.begin(), at_noise.end(), [](bool at) { return at; });
+    // No larger an error on the validation window, over the outputs combined; and where the
+    // runs' model fits every output to its floor, so must the refit.
+    joint.better = combined_rmse(joint.result.validation.rmse, joint.floor) <=
+                       combined_rmse(joint.start_validation_rmse, joint.floor) &&
+                   (joint.at_floor || !ended.at_floor);
     joint.still_missed = outputs_above_floor(problem.outputs, joint.result.validation.rmse,
                                              joint.floor, first.floor_margin);
   } catch (const std::exception& error) {

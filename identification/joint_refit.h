@@ -26,8 +26,9 @@ struct JointRefit {
   // Per output, the start model's RMSEs on the two windows.
   std::vector<double> start_identification_rmse;
   std::vector<double> start_validation_rmse;
-  // Its validation error, combined over the floors, is no larger than the start model's: it is
-  // the model that carries every named effect.
+  // Its validation error, combined over the floors, is no larger than the start model's, and it
+  // fits every output to its floor where the start model does: it is the model that carries
+  // every named effect.
   bool better = false;
   bool at_floor = false;     // every output's validation RMSE within the margin of its floor
   std::string still_missed;  // the outputs it misses, in floors ("force 1.8 times"), else ""
@@ -42,7 +43,8 @@ bool joint_refit_due(const std::vector<EffectRun>& runs);
 // effect's (EffectRun::effect_parameters, within the bounds its run fitted them in), starting
 // from the model's values, on `first`'s measurement, outputs and windows; each output weighted
 // by the start model's identification RMSE. A fit that cannot be made (the model does not load,
-// its fit fails) is returned with `failure` set: the runs stand without it.
+// its fit fails) is returned with `failure` set: the runs stand without it. A value on a bound
+// starts there (clamped: the runs' files can hold it a rounding step beyond).
 JointRefit refit_jointly(const DiscoverRequest& first, const std::vector<EffectRun>& runs,
                          const std::string& out, std::shared_ptr<const UnitSystem> units);
 

@@ -206,6 +206,9 @@ TEST_CASE("A run whose effect still misses the floor is followed by one from the
   REQUIRE(runs[0].effect_parameters.size() == 2);
   CHECK(runs[0].effect_parameters[0].path == "muscle.effects[0].stiffness");
   CHECK(runs[0].effect_parameters[1].path == "muscle.effects[0].radius");
+  // A later run's effect comes after the ones its model carries.
+  for (const auto& parameter : runs[1].effect_parameters)
+    CHECK_THAT(parameter.path, Catch::StartsWith("muscle.effects[1]."));
   CHECK(runs[1].directory == out + "/effect2");
   const std::string first_model = out + "/augmented.yaml";
   CHECK(runs[1].model == first_model);
