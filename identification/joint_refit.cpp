@@ -40,7 +40,6 @@ JointRefit refit_jointly(const DiscoverRequest& first, const std::vector<EffectR
   joint.directory = (std::filesystem::path(out) / "joint").string();
   const FinalModel ended = final_model(runs);
   joint.start_model = ended.path;
-  joint.effects = ended.effects;
   try {
     const DiscoverSetup setup = setup_discovery(next_effect_request(first, ended.path), units);
     joint.floor = setup.floor;
@@ -77,16 +76,14 @@ JointRefit refit_jointly(const DiscoverRequest& first, const std::vector<EffectR
     for (const auto& estimate : joint.result.estimates) start.push_back(estimate.initial);
     joint.start_identification_rmse = score_window(problem, start, problem.identification).rmse;
     joint.start_validation_rmse = score_window(problem, start, problem.validation).rmse;
-    const auto at_noise =
-        at_noise_floor(joint.result.validation.rmse, joint.floor, first.floor_margin);
-    joint.at_floor = std::all_of(at_noise.begin(), at_noise.end(), [](bool at) { return at; });
+    joint.still_missed = outputs_above_floor(problem.outputs, joint.result.validation.rmse,
+                                             joint.floor, first.floor_margin);
+    joint.at_floor = joint.still_missed.empty();
     // No larger an error on the validation window, over the outputs combined; and where the
     // runs' model fits every output to its floor, so must the refit.
     joint.better = combined_rmse(joint.result.validation.rmse, joint.floor) <=
                        combined_rmse(joint.start_validation_rmse, joint.floor) &&
                    (joint.at_floor || !ended.at_floor);
-    joint.still_missed = outputs_above_floor(problem.outputs, joint.result.validation.rmse,
-                                             joint.floor, first.floor_margin);
   } catch (const std::exception& error) {
     joint.failure = error.what();
   }

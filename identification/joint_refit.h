@@ -18,7 +18,6 @@ namespace tcpmsim::fit {
 struct JointRefit {
   std::string directory;              // where its files go: out/joint
   std::string start_model;            // the model the runs ended with, which it starts from
-  std::vector<std::string> effects;   // named, in the runs' order
   std::size_t effect_parameters = 0;  // freed besides the base laws'
   FitSpec spec;                       // the base laws' and every named effect's parameters
   FitResult result;

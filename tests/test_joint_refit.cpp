@@ -201,7 +201,6 @@ TEST_CASE("A joint refit that validates worse than the runs' model leaves that m
   fit::JointRefit joint;
   joint.directory = "out/joint";
   joint.start_model = "out/effect2/augmented.yaml";
-  joint.effects = {"hysteresis", "slow_relaxation"};
   joint.effect_parameters = 4;
   joint.spec.problem.outputs = {{"force", "drive.force", "N", 1e-3}};
   joint.result.estimates.resize(10);
