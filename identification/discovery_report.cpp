@@ -79,7 +79,7 @@ nlohmann::json diagnostics_json(const ResidualDiagnostics& diagnostics) {
 
 FitSpec spec_for_yaml(const FitSpec& spec, const std::string& data_file) {
   FitSpec copy = spec;
-  copy.file = "discover";
+  copy.file.clear();
   copy.data_file = data_file;
   return copy;
 }

@@ -332,7 +332,7 @@ DiscoverSetup setup_discovery(const DiscoverRequest& request,
     throw UsageError("--model: " + problem);
 
   FitSpec& spec = setup.base;
-  spec.file = "discover";
+  spec.file.clear();
   spec.model_file = request.model_file;
   spec.data_file = request.data_file;
   spec.problem.model = model;

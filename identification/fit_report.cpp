@@ -152,8 +152,9 @@ std::string fitted_scenario_yaml(const FitSpec& spec, const FitResult& result) {
   }
   YAML::Emitter out;
   out << root;
-  return "# " + spec.model_file + " fitted to " + spec.data_file + " by tcpmsim fit " + spec.file +
-         "\n" + out.c_str() + "\n";
+  const std::string command = spec.file.empty() ? "tcpmsim discover" : "tcpmsim fit " + spec.file;
+  return "# " + spec.model_file + " fitted to " + spec.data_file + " by " + command + "\n" +
+         out.c_str() + "\n";
 }
 
 std::vector<std::string> write_fit_outputs(const std::string& directory, const FitSpec& spec,

@@ -24,7 +24,7 @@ namespace tcpmsim::fit {
 // Files are found beside the fit file. The model runs over the windows (its scenario.duration
 // is set to their end) with its measurement.file set to the data.
 struct FitSpec {
-  std::string file;
+  std::string file;  // the fit file; empty for a spec `tcpmsim discover` made
   std::string model_file;
   std::string data_file;
   FitProblem problem;

@@ -450,6 +450,10 @@ multistart: {starts: 2}
   CHECK(result.estimates[0].value == Approx(10.8).margin(3 * result.estimates[0].standard_error));
   const auto out = fit_directory() / "out";
   fit::write_fit_outputs(out.string(), spec, result);
+  std::string header;
+  std::getline(std::ifstream(out / "fitted.yaml"), header);
+  CHECK(header ==
+        "# " + spec.model_file + " fitted to " + data + " by tcpmsim fit " + path.string());
   const Trace rerun = simulate(load_scenario((out / "fitted.yaml").string(), {}, shared_units()));
   const MeasuredData written = read_measured_data((out / "fit.h5").string(), *shared_units());
   REQUIRE(written.find("fitted.force") != nullptr);

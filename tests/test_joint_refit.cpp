@@ -131,6 +131,9 @@ TEST_CASE("Effects named one a run, refitted together, move to the values the da
         joint.result.validation.rmse[0]);
   // The file it names carries the refit: run as it is, it scores what the refit did.
   fit::write_fit_outputs(joint.directory, joint.spec, joint.result);
+  std::string header;
+  std::getline(std::ifstream(joint.directory + "/fitted.yaml"), header);
+  CHECK_THAT(header, Catch::EndsWith(" by tcpmsim discover"));
   const auto written = fit::setup_discovery(
       fit::next_effect_request(request, joint.directory + "/fitted.yaml"), testing::shared_units());
   const auto& problem = written.base.problem;
