@@ -404,11 +404,13 @@ std::string discovery_report(const Discovery& discovery) {
       << "makes to the outputs explains the base model's validation residual, which no fit has "
       << "seen (its signature: the matched-filter z = sum(r d) / |d| in noise units, standard "
       << "normal for a residual of noise alone, at least " << text(request.min_signature)
-      << "), and, where the base model misses an output by more than the noise (beyond "
-      << text(100 * request.floor_margin) << " % of its floor), it closes at least "
-      << text(100 * request.min_gap_closed)
-      << " % of the gap above the floor of the outputs the base model misses"
-      << ". Every candidate starts from the base fit with its effect at zero size, where it is "
+      << "), and it closes at least " << text(100 * request.min_gap_closed)
+      << " % of the gap above the noise floor: of the outputs the base model misses by more "
+         "than the noise (beyond "
+      << text(100 * request.floor_margin)
+      << " % of the floor), or, where it misses none, of the outputs' gap combined (nothing is "
+         "asked where the base model is at or below its floors combined). Every candidate starts "
+         "from the base fit with its effect at zero size, where it is "
          "the base model, so its fit can only end at or below the base model's cost; one that "
          "ends above is fitted again from there and otherwise reported as failed. Within a "
          "family (one Dahl element or a Prandtl-Ishlinskii operator, one relaxation branch or "
