@@ -13,6 +13,7 @@
 #include "fmu/fmu_resources.h"
 #include "fmu/model_description.h"
 #include "kinds/standard_kinds.h"
+#include "sim/config/config_error.h"
 #include "sim/io/hdf5_files.h"
 
 namespace tcpmsim::fmu {
@@ -91,17 +92,17 @@ class ZipWriter {
 
 FmuInterface export_fmu(const FmuExportRequest& request, std::shared_ptr<const UnitSystem> units) {
   if (!std::filesystem::is_regular_file(request.library))
-    throw std::runtime_error("no FMU library at " + request.library +
-                             " (build the target tcpmsim_fmu, or give --library)");
+    throw UsageError("--library: no FMU library at " + request.library +
+                     " (build the target tcpmsim_fmu, or give --library)");
   check_output_path(request.output);  // before any work, as every command's output
   const Scenario scenario = load_scenario(request.scenario_file, request.overrides, units);
   if (!scenario.parameter_settings.empty()) {
     // A --set of a parameter lives in the run context, not in the resolved YAML the FMU carries.
     std::string paths;
     for (const auto& [path, value] : scenario.parameter_settings) paths += " " + path;
-    throw std::runtime_error("--set of model parameters (" + paths.substr(1) +
-                             ") is not carried into an FMU: its parameters are the FMU's own "
-                             "(set them from the master), or write the value into the scenario");
+    throw UsageError("--set of model parameters (" + paths.substr(1) +
+                     ") is not carried into an FMU: its parameters are the FMU's own "
+                     "(set them from the master), or write the value into the scenario");
   }
   FmuSettings settings{model_identifier_for(scenario.settings.name), request.outputs};
 

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "sim/config/config_error.h"
 #include "sim/step_simulator.h"
 
 namespace tcpmsim::fmu {
@@ -83,8 +84,8 @@ std::vector<FmuVariable> output_variables(const Scenario& scenario,
       for (const auto& channel : channels)
         if (channel.recorded)
           known += (known.empty() ? "" : ", ") + channel.group + "." + channel.name;
-      throw std::invalid_argument("no recorded output '" + output + "' in '" +
-                                  scenario.settings.name + "'; it records: " + known);
+      throw UsageError("--outputs: no recorded output '" + output + "' in '" +
+                       scenario.settings.name + "'; it records: " + known);
     }
     add(*found);
   }
@@ -139,7 +140,7 @@ FmuInterface fmu_interface(const Scenario& scenario, const std::vector<std::stri
   fmu.tolerance = scenario.solver.relative_tolerance;
   fmu.variables = input_variables(simulator);
   if (fmu.variables.empty())
-    throw std::invalid_argument(
+    throw UsageError(
         "'" + scenario.settings.name +
         "' has no external input for an FMU's master to set (a controller section of type "
         "external)");

@@ -1,6 +1,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "sim/config/config_error.h"
 #include "sweep/sweep_mpi.h"
 
 namespace tcpmsim::sweep {
@@ -31,7 +32,7 @@ bool mpi_available() {
 
 SweepOutcome run_sweep_mpi(const SweepSpec&, const SweepOptions&, std::shared_ptr<const UnitSystem>,
                            const SweepProgress&) {
-  throw std::logic_error("this tcpmsim was built without MPI (install libopenmpi-dev and rebuild)");
+  throw UsageError("this tcpmsim was built without MPI (install libopenmpi-dev and rebuild)");
 }
 #endif
 

@@ -327,6 +327,25 @@ with h5py.File(sys.argv[1], "w") as f:
   rm -f "$work/foreign.h5.partial"
 fi
 
+# export-fmu refuses what it cannot export as usage errors that say why (a scenario without an
+# external input and an unknown --outputs were internal errors, exit 5; a --set of a parameter
+# and a missing library, output errors, exit 4). A stand-in --library: the refusals come before
+# anything is packed, and the sanitizer trees build no FMU library.
+external="$source_dir/configs/ch7_control/external_force.yaml"
+expect 2 "export-fmu without its library is a usage error" -- "$tcpmsim" export-fmu "$external" \
+  --library "$work/none.so" -o "$work/x.fmu"
+contains "$work/err" "--library: no FMU library at $work/none.so" "the missing library is named"
+expect 2 "export-fmu of a scenario without an external input is a usage error" -- "$tcpmsim" \
+  export-fmu "$config" --library "$external" -o "$work/x.fmu"
+contains "$work/err" "has no external input for an FMU's master to set (a controller section of type external)" "the export says what the scenario lacks"
+expect 2 "export-fmu of an output the scenario does not record is a usage error" -- "$tcpmsim" \
+  export-fmu "$external" --library "$external" --outputs muscle.colour -o "$work/x.fmu"
+contains "$work/err" "--outputs: no recorded output 'muscle.colour' in 'ch7_external_force'; it records: muscle.thermal_force" "the unknown output is named beside those recorded"
+expect 2 "export-fmu with a --set of a model parameter is a usage error" -- "$tcpmsim" \
+  export-fmu "$external" --library "$external" --set "muscle.mechanics.k1=10 N/m" -o "$work/x.fmu"
+contains "$work/err" "--set of model parameters (muscle.mechanics.k1) is not carried into an FMU" "the parameter's --set is named"
+[[ ! -e $work/x.fmu ]] && echo "ok: no FMU after a refusal" || { echo "FAIL: an FMU written after a refusal"; failures=$((failures + 1)); }
+
 check_provenance
 
 if /usr/bin/python3 -c "import h5py, matplotlib" 2>/dev/null; then
