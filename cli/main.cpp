@@ -2,15 +2,18 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <optional>
 #include <thread>
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include "analysis/analyze_command.h"
@@ -296,12 +299,22 @@ int sweep(const Options& options) {
 }
 
 // A command's output directory, made before its work so that one that cannot be written is
-// refused first; whether it was made here (and may be removed again when the work fails).
+// refused first (one that exists is tried with a file of its own, made and removed: a read-only
+// directory or file system would otherwise fail only when the results are written, after
+// minutes of fitting); whether it was made here (and may be removed again when the work fails).
 bool make_output_directory(const std::string& directory) {
   const bool existed = std::filesystem::exists(directory);
   std::error_code error;
   std::filesystem::create_directories(directory, error);
   if (error) throw std::runtime_error("cannot write " + directory + ": " + error.message());
+  const std::string probe =
+      (std::filesystem::path(directory) / (".tcpmsim_write_check_" + std::to_string(::getpid())))
+          .string();
+  const int descriptor = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  if (descriptor < 0)
+    throw std::runtime_error("cannot write into " + directory + ": " + std::strerror(errno));
+  ::close(descriptor);
+  std::filesystem::remove(probe, error);
   return !existed;
 }
 

@@ -178,6 +178,15 @@ expect 1 "a fit the data make impossible fails with its reason" -- "$tcpmsim" fi
   --data "$work/overflow.csv" --out "$work/fit_failed" --set 'multistart.starts=0'
 contains "$work/err" "the squared residuals overflow" "the failed fit says why"
 [[ ! -e $work/fit_failed ]] && echo "ok: a failed fit leaves no output directory" || { echo "FAIL: $work/fit_failed exists"; failures=$((failures + 1)); }
+# An output directory that exists but cannot be written into (/proc, even for root) is refused
+# before any fit: it failed only when the results were written, after the whole fit.
+expect 4 "fit into a directory it cannot write is an output error before the fit" -- "$tcpmsim" fit \
+  "$discover/ch7_fit.yaml" --data "$work/measured.csv" --out /proc
+contains "$work/err" "tcpmsim: cannot write into /proc: " "the fit names the directory and the system's reason"
+expect 4 "discover into a directory it cannot write is an output error before the base fit" -- \
+  "$tcpmsim" discover --model "$discover/ch7_base.yaml" --data "$work/measured.csv" \
+  --inputs power,deflection --outputs force --validate-from 400 --out /proc
+contains "$work/err" "tcpmsim: cannot write into /proc: " "discover names the directory and the system's reason"
 # Issue 31: a window that holds no sample (between two samples, or inside a gap in the data's
 # times) is a located configuration error, not a crash, and nothing is written.
 fit_file() {  # fit_file NAME IDENTIFICATION [VALIDATION]: a one-parameter fit of the base model
