@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "analysis/statistics.h"
+#include "sim/config/config_error.h"
 #include "sim/io/delimited_file.h"
 #include "sim/value_check.h"
 
@@ -15,6 +16,28 @@ std::vector<double> step_means(const std::vector<std::vector<double>>& readings)
   std::vector<double> means;
   for (const auto& step : readings) means.push_back(mean(step));
   return means;
+}
+
+// Refuses a model whose inductance table does not rise or fall all the way: it has no inverse,
+// and no deflection can be read from a measured inductance (a geometry outside the model).
+void check_invertible(const ModelOutcome& outcome, const CoilSpring& spring,
+                      const SequenceAnalysis& a) {
+  const auto& table = outcome.table_inductance;
+  const bool rising = table.back() > table.front();
+  for (std::size_t i = 1; i < table.size(); ++i) {
+    if (rising ? table[i] > table[i - 1] : table[i] < table[i - 1]) continue;
+    throw ConfigError(SourceLocation{spring.source, 0, 0, ""}, "coil_spring",
+                      "the " + outcome.title +
+                          " inductance is not monotonic in the coil length "
+                          "between " +
+                          number_text(a.table_length.front() * 1e3) + " and " +
+                          number_text(a.table_length.back() * 1e3) + " mm (it turns near " +
+                          number_text(a.table_length[i - 1] * 1e3) +
+                          " mm), so no deflection can be "
+                          "read from a measured inductance: this spring's geometry (" +
+                          number_text(a.turns) + " turns, coil length " +
+                          number_text(a.coil_length * 1e3) + " mm) lies outside that model");
+  }
 }
 
 ModelOutcome score(ModelOutcome outcome, const SequenceAnalysis& analysis) {
@@ -67,6 +90,7 @@ SequenceAnalysis analyse_sequence(const CoilSpring& spring, const CoilSequence& 
     for (double l : a.table_length) {
       outcome.table_inductance.push_back(model_inductance(model, spring.at_length(l)));
     }
+    check_invertible(outcome, spring, a);
     // The table inverted by linear inter/extrapolation (MATLAB interp1 'linear', 'extrap').
     for (double measured : a.inductance_mean) {
       outcome.predicted_deflection.push_back(

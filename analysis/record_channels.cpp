@@ -117,8 +117,10 @@ RecordChannels read_record_channels(const std::string& path) {
     record.config_file = read_text_attribute(file, "config_file");
     record.config = read_text_attribute(file, "config");
     if (file.attrExists("seed")) {
+      const H5::Attribute attribute = file.openAttribute("seed");
+      require_single_value(attribute);
       std::uint64_t seed = 0;
-      file.openAttribute("seed").read(H5::PredType::NATIVE_UINT64, &seed);
+      attribute.read(H5::PredType::NATIVE_UINT64, &seed);
       record.seed = std::to_string(seed);
     }
     read_channels(file, "", record);

@@ -1,5 +1,6 @@
 #include "analysis/spring_forces.h"
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -18,12 +19,15 @@ namespace tcpmsim {
 
 namespace {
 
+// The four forces the analysis compares, F_i, F_o, F_L and F_x.
+constexpr std::array<const char*, 4> kForces{"spring.input_force", "spring.output_force",
+                                             "spring.inductance_force", "spring.deflection_force"};
+
 // Keeps the four forces inside the analysis window only.
 class ForceWindow final : public OutputSink {
  public:
   ForceWindow(const System& system, double start) : start_(start) {
-    for (const char* name : {"spring.input_force", "spring.output_force", "spring.inductance_force",
-                             "spring.deflection_force"}) {
+    for (const char* name : kForces) {
       const int index = system.signal_index(name);
       if (index < 0) throw std::invalid_argument(std::string("the scenario has no output ") + name);
       indices_.push_back(index);
@@ -78,7 +82,7 @@ PreparedRun prepare(const std::string& config, double window,
     std::snprintf(problem, sizeof problem,
                   ": the analysis window (%g s) must lie within the recorded %g s to %g s", window,
                   settings.output_start, settings.duration);
-    throw std::runtime_error(config + problem);
+    throw UsageError("--window: " + config + problem);
   }
   const auto* chain = run.scenario.system->find<const CoilSpringChain>();
   const auto* sensor = run.scenario.system->find<const CoilSpringInductance>();
@@ -87,6 +91,12 @@ PreparedRun prepare(const std::string& config, double window,
         "spring-forces takes coil-spring scenarios with an inductance sensor "
         "(configs/ch4/*.yaml); " +
         config + " is not one");
+  }
+  for (const char* name : kForces) {
+    if (run.scenario.system->signal_index(name) < 0)
+      throw UsageError(std::string("spring-forces reads the outputs of a coil spring named "
+                                   "'spring' (") +
+                       name + "); " + config + " names its spring otherwise");
   }
   run.nominal_force = chain->defaults().stiffness * (sensor->defaults().longest_length -
                                                      chain->defaults().rest_length);  // (4.14)

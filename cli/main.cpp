@@ -499,10 +499,22 @@ int measure(const Options& options) {
       options.output.empty() ? "results/" + scenario.settings.name + ".csv" : options.output;
   tcpmsim::prepare_output_file(output);  // before the run, as `run` checks its record's path
   const std::string partial = tcpmsim::partial_path(output);
+  std::string measured;
+  try {
+    measured = tcpmsim::fit::measure(scenario, bench, *units);
+  } catch (const tcpmsim::SolverFailure& failure) {
+    std::filesystem::remove(partial);  // the empty file of the check: nothing was measured
+    std::cerr << "tcpmsim: simulation failed: " << failure.what()
+              << "\ntcpmsim: no measurement was written\n";
+    return kSimulationFailed;
+  } catch (...) {
+    std::filesystem::remove(partial);
+    throw;
+  }
   {
     std::ofstream file(partial);
     if (!file) throw std::runtime_error("cannot write " + partial);
-    file << tcpmsim::fit::measure(scenario, bench, *units);
+    file << measured;
     if (!file) throw std::runtime_error("cannot write " + partial);
   }
   std::filesystem::rename(partial, output);

@@ -113,8 +113,18 @@ FmuInterface export_fmu(const FmuExportRequest& request, std::shared_ptr<const U
   std::filesystem::create_directories(binaries);
   write_text(resources / kScenarioResource, scenario.resolved_yaml);
   write_text(resources / kSettingsResource, settings_yaml(settings));
-  // The interface as the library will make it from the same files.
-  FmuResources packed = read_fmu_resources(resources.string(), units);
+  // The interface as the library will make it from the same files. The scenario loaded where it
+  // lies; from the resources it fails only on a file it names by a relative path.
+  const FmuResources packed = [&] {
+    try {
+      return read_fmu_resources(resources.string(), units);
+    } catch (const ConfigError&) {
+      throw UsageError(request.scenario_file +
+                       ": it reads a file by a relative path (a measurement or a data signal), "
+                       "which the FMU does not carry: scenarios that read other files do not "
+                       "export yet");
+    }
+  }();
   const FmuInterface fmu =
       fmu_interface(packed.scenario, packed.settings.outputs, packed.settings.model_identifier);
   const std::string description = model_description_xml(fmu, *units, request.tool, utc_now());

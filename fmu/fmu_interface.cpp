@@ -64,16 +64,25 @@ std::vector<FmuVariable> output_variables(const Scenario& scenario,
     variable.unit = channel.unit;
     variables.push_back(variable);
   };
+  const auto& inputs = scenario.system->external_inputs();
+  const auto is_input = [&](const std::string& name) {
+    return std::any_of(inputs.begin(), inputs.end(),
+                       [&](const ExternalInputInfo& i) { return i.name == name; });
+  };
   if (outputs.empty()) {
     // Every recorded channel but the external inputs' own (an input is its own variable).
-    const auto& inputs = scenario.system->external_inputs();
     for (const auto& channel : channels) {
-      const std::string name = channel.group + "." + channel.name;
-      const bool input = std::any_of(inputs.begin(), inputs.end(),
-                                     [&](const ExternalInputInfo& i) { return i.name == name; });
-      if (channel.recorded && !input) add(channel);
+      if (channel.recorded && !is_input(channel.group + "." + channel.name)) add(channel);
     }
     return variables;
+  }
+  for (auto output = outputs.begin(); output != outputs.end(); ++output) {
+    if (std::find(outputs.begin(), output, *output) != output)
+      throw UsageError("--outputs: '" + *output + "' is named twice");
+    if (is_input(*output))
+      throw UsageError(
+          "--outputs: '" + *output +
+          "' is an external input, a variable of the FMU already (its master sets it)");
   }
   for (const auto& output : outputs) {
     const auto found = std::find_if(channels.begin(), channels.end(), [&](const ChannelInfo& c) {

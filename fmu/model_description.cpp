@@ -32,8 +32,19 @@ std::string escaped(const std::string& text) {
       case '"':
         out += "&quot;";
         break;
+      case '\t':
+      case '\n':
+      case '\r':
+        out += "&#" + std::to_string(static_cast<int>(c)) + ";";
+        break;
       default:
-        out += c;
+        if (static_cast<unsigned char>(c) < 0x20) {
+          // XML 1.0 has no way to write the other control characters: shown as text.
+          constexpr char kHex[] = "0123456789abcdef";
+          out += std::string("\\x") + kHex[c >> 4] + kHex[c & 0xf];
+        } else {
+          out += c;
+        }
     }
   }
   return out;

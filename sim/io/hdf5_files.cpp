@@ -101,9 +101,18 @@ std::string read_text_attribute(const H5::H5Object& object, const std::string& n
   if (!object.attrExists(name)) return "";
   H5::Attribute attribute = object.openAttribute(name);
   if (attribute.getTypeClass() != H5T_STRING) return "";
+  require_single_value(attribute);
   std::string value;
   attribute.read(attribute.getStrType(), value);
   return value;
+}
+
+void require_single_value(const H5::Attribute& attribute) {
+  const hssize_t count = attribute.getSpace().getSimpleExtentNpoints();
+  if (count != 1)
+    throw H5::AttributeIException("require_single_value", "the attribute " + attribute.getName() +
+                                                              " holds " + std::to_string(count) +
+                                                              " values where one is expected");
 }
 
 std::string units_of(const H5::H5Object& object) {

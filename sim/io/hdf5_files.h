@@ -49,8 +49,12 @@ void write_text_array_attribute(H5::H5Object& object, const std::string& name,
 std::vector<double> read_doubles(const H5::H5Location& location, const std::string& name);
 // A dataset of variable-length texts, whatever its shape (row-major); a null text reads as "".
 std::vector<std::string> read_texts(const H5::H5Location& location, const std::string& name);
-// A scalar text attribute, or empty when there is none (or it is not text).
+// A scalar text attribute, or empty when there is none (or it is not text). An attribute of
+// more than one value is an H5::AttributeIException, as a damaged file's.
 std::string read_text_attribute(const H5::H5Object& object, const std::string& name);
+// Throws H5::AttributeIException unless `attribute` holds exactly one value: reading one of
+// several into a single value would write past it (a crafted or damaged file).
+void require_single_value(const H5::Attribute& attribute);
 // A dataset's "units" attribute, or empty.
 std::string units_of(const H5::H5Object& object);
 

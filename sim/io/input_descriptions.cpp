@@ -11,6 +11,10 @@ namespace {
 std::vector<std::string> text_array_attribute(const H5::H5Object& object, const std::string& name) {
   if (!object.attrExists(name)) return {};
   H5::Attribute attribute = object.openAttribute(name);
+  // Read as pointers: fixed-length texts would be written past them.
+  if (attribute.getTypeClass() != H5T_STRING || !attribute.getStrType().isVariableStr())
+    throw H5::AttributeIException("text_array_attribute",
+                                  "the attribute " + name + " is not variable-length text");
   const auto count = static_cast<std::size_t>(attribute.getSpace().getSimpleExtentNpoints());
   std::vector<char*> pointers(count, nullptr);
   attribute.read(attribute.getStrType(), pointers.data());
@@ -73,6 +77,7 @@ SignalDescription read_signal_description(const H5::Group& group) {
   for (int k = 0; k < group.getNumAttrs(); ++k) {
     H5::Attribute attribute = group.openAttribute(static_cast<unsigned>(k));
     if (attribute.getTypeClass() != H5T_FLOAT && attribute.getTypeClass() != H5T_INTEGER) continue;
+    require_single_value(attribute);
     double value = 0.0;
     attribute.read(H5::PredType::NATIVE_DOUBLE, &value);
     description.parameters.emplace_back(attribute.getName(), value);

@@ -59,17 +59,8 @@ hsize_t complete_rows(H5::H5File& file, const std::vector<H5::DataSet>& series) 
   return rows;
 }
 
-RecoveredRecord cut_and_close(const std::string& partial, const std::string& working) {
-  const std::lock_guard lock(hdf5_mutex());
-  H5::Exception::dontPrint();
-  H5::H5File file;
-  try {
-    file = H5::H5File(working, H5F_ACC_RDWR);
-  } catch (const H5::Exception&) {
-    refuse(partial,
-           "cannot read it as HDF5: the run was killed before its first flush, or "
-           "this is not a tcpmsim record");
-  }
+// Cuts every series of the open record to its last whole flush and closes it as interrupted.
+RecoveredRecord cut_open_record(H5::H5File& file, const std::string& partial) {
   H5::Group root = file.openGroup("/");
   // A record states what made it when it is created, before its first sample.
   for (const char* attribute : {"tcpmsim_version", "config"}) {
@@ -105,6 +96,26 @@ RecoveredRecord cut_and_close(const std::string& partial, const std::string& wor
   root.close();
   file.close();
   return recovered;
+}
+
+RecoveredRecord cut_and_close(const std::string& partial, const std::string& working) {
+  const std::lock_guard lock(hdf5_mutex());
+  H5::Exception::dontPrint();
+  H5::H5File file;
+  try {
+    file = H5::H5File(working, H5F_ACC_RDWR);
+  } catch (const H5::Exception&) {
+    refuse(partial,
+           "cannot read it as HDF5: the run was killed before its first flush, or "
+           "this is not a tcpmsim record");
+  }
+  // Past the header, a file damaged inside (or a record of another shape) fails in the library.
+  try {
+    return cut_open_record(file, partial);
+  } catch (const H5::Exception& error) {
+    refuse(partial, "cannot recover it: " + error.getDetailMsg() +
+                        " (the file is damaged, or not a record tcpmsim wrote)");
+  }
 }
 
 }  // namespace

@@ -122,9 +122,17 @@ expect 4 "two results under one name are an output error, not a crash" -- "$tcpm
   || { echo "FAIL: twice.h5 left behind"; ls "$work"; failures=$((failures + 1)); }
 expect 4 "a spring-force output the file system refuses is an output error" -- "$tcpmsim" spring-forces \
   "$source_dir/configs/ch4/st_heel_strike.yaml" -o "$work/taken.h5" --quiet
-expect 4 "an analysis window longer than the record is refused, not analysed short" -- "$tcpmsim" \
+expect 2 "an analysis window longer than the record is a usage error, not analysed short" -- "$tcpmsim" \
   spring-forces "$source_dir/configs/ch4/st_heel_strike.yaml" --window 1 -o "$work/window.h5"
-contains "$work/err" "the analysis window (1 s) must lie within the recorded" "the window error says why"
+contains "$work/err" "--window: $source_dir/configs/ch4/st_heel_strike.yaml: the analysis window (1 s) must lie within the recorded" "the window error names the option and says why"
+# A coil spring the scenario names otherwise than 'spring': refused before any run (it was an
+# output error, exit 4, from the run's thread).
+sed 's/^spring:$/springs:\n  left:/; /^springs:/,/^[a-z]/{/^ /s/^/  /}' \
+  "$source_dir/configs/ch4/st_heel_strike.yaml" >"$work/named_spring.yaml"
+expect 0 "a coil spring named 'left' is a valid scenario" -- "$tcpmsim" validate "$work/named_spring.yaml"
+expect 2 "spring-forces on a spring named otherwise is a usage error" -- "$tcpmsim" spring-forces \
+  "$work/named_spring.yaml" -o "$work/named.h5"
+contains "$work/err" "spring-forces reads the outputs of a coil spring named 'spring' (spring.input_force); $work/named_spring.yaml names its spring otherwise" "the error says which name it reads"
 expect 2 "spring-forces with a missing file is a usage error" -- "$tcpmsim" spring-forces "$work/none.yaml"
 # An analysis given a scenario of another kind is a usage error that names the file and what the
 # command takes (issue 13: it was an internal error).
@@ -146,6 +154,13 @@ expect 0 "coil-fit finds the thesis' data from another working directory" -- \
   bash -c 'cd "$1" && "$2" coil-fit "$3" -o "$1/coil_fit.h5" --quiet' _ "$work" "$tcpmsim" \
   "$source_dir/configs/springs/s1.yaml"
 [[ -s $work/coil_fit.h5 ]] && echo "ok: coil-fit wrote its file" || { echo "FAIL: no coil_fit.h5"; failures=$((failures + 1)); }
+# A geometry whose model inductance turns as the coil is stretched has no inverse: a located
+# error naming the model, not an internal one from the interpolation.
+sed -e "s|^  data: .*|  data: $source_dir/data/coil-spring-inductance|" -e 's|^  body_length: .*|  body_length: 20 mm|' \
+  "$source_dir/configs/springs/s4.yaml" >"$work/short_spring.yaml"
+expect 3 "a spring outside a coil model's range is a configuration error" -- "$tcpmsim" coil-fit \
+  "$work/short_spring.yaml" -o "$work/short.h5"
+contains "$work/err" "$work/short_spring.yaml: error: coil_spring: the Rosa* inductance is not monotonic in the coil length between 17.8 and 27.59 mm" "the error names the file, the model and the lengths"
 expect 2 "an explicit --data stays relative to the working directory" -- \
   bash -c 'cd "$1" && "$2" coil-fit "$3" --data data/coil-spring-inductance -o "$1/none.h5"' _ \
   "$work" "$tcpmsim" "$source_dir/configs/springs/s1.yaml"
@@ -334,6 +349,30 @@ with h5py.File(sys.argv[1], "w") as f:
     --response muscle/force -o "$work/none_analysis.h5"
   contains "$work/err" "$work/foreign.h5.partial: error: not a tcpmsim record: it has no 'tcpmsim_version' attribute" "analyze names the foreign file and why"
   rm -f "$work/foreign.h5.partial"
+  # A record damaged inside (its /time a group): refused as a data-file error, not an internal one.
+  /usr/bin/python3 -c 'import sys, h5py
+with h5py.File(sys.argv[1], "w") as f:
+    f.attrs["tcpmsim_version"] = "0.1.0"; f.attrs["config"] = "c"; f.create_group("time")' "$work/odd.h5.partial"
+  expect 3 "recover of a record damaged inside is a data-file error" -- "$tcpmsim" recover "$work/odd.h5.partial"
+  contains "$work/err" "$work/odd.h5.partial: error: cannot recover it: " "the damaged record is named"
+  [[ -e $work/odd.h5.partial && ! -e $work/odd.interrupted.h5 && ! -e $work/odd.interrupted.h5.recovering ]] \
+    && echo "ok: nothing recovered from a damaged record" || { echo "FAIL: recover left a file"; ls "$work"; failures=$((failures + 1)); }
+  rm -f "$work/odd.h5.partial"
+  # An attribute of many values where the reader takes one (an input's parameter, the seed) wrote
+  # past its one value (a segmentation fault): refused as a damaged file.
+  for attribute in "inputs/drive.power:initial:float" ":seed:uint64"; do
+    IFS=: read -r where name type <<<"$attribute"
+    cp "$work/run.h5" "$work/crafted.h5"
+    /usr/bin/python3 -c 'import sys, h5py, numpy
+with h5py.File(sys.argv[1], "a") as f:
+    target = f[sys.argv[2] or "/"]
+    if sys.argv[3] in target.attrs: del target.attrs[sys.argv[3]]
+    target.attrs[sys.argv[3]] = numpy.arange(8000).astype(sys.argv[4])' "$work/crafted.h5" "$where" "$name" "$type"
+    expect 3 "analyze of a record whose $name attribute holds 8000 values is a data-file error" -- \
+      "$tcpmsim" analyze "$work/crafted.h5" --response muscle/force -o "$work/crafted_analysis.h5"
+    contains "$work/err" "$work/crafted.h5: error: cannot read it as HDF5" "the crafted record is named"
+  done
+  rm -f "$work/crafted.h5"
 fi
 
 # export-fmu refuses what it cannot export as usage errors that say why (a scenario without an
@@ -353,7 +392,37 @@ contains "$work/err" "--outputs: no recorded output 'muscle.colour' in 'ch7_exte
 expect 2 "export-fmu with a --set of a model parameter is a usage error" -- "$tcpmsim" \
   export-fmu "$external" --library "$external" --set "muscle.mechanics.k1=10 N/m" -o "$work/x.fmu"
 contains "$work/err" "--set of model parameters (muscle.mechanics.k1) is not carried into an FMU" "the parameter's --set is named"
+expect 2 "export-fmu of an output named twice is a usage error" -- "$tcpmsim" export-fmu "$external" \
+  --library "$external" --outputs load.force,load.force -o "$work/x.fmu"
+contains "$work/err" "--outputs: 'load.force' is named twice" "the output named twice is named"
+expect 2 "export-fmu of an external input as an output is a usage error" -- "$tcpmsim" export-fmu \
+  "$external" --library "$external" --outputs controller.power_command -o "$work/x.fmu"
+contains "$work/err" "--outputs: 'controller.power_command' is an external input, a variable of the FMU already" "the input given as an output is named"
+mkdir -p "$work/relative"
+sed 's|^load: .*|load: {type: deflection, deflection: {type: data, file: deflection.csv, channel: deflection}}|' \
+  "$external" >"$work/relative/data_load.yaml"
+printf 'time[s],deflection[mm]\n0,20\n200,20\n' >"$work/relative/deflection.csv"
+expect 0 "a scenario that reads a data file beside it is valid" -- "$tcpmsim" validate "$work/relative/data_load.yaml"
+expect 2 "export-fmu of a scenario reading a file by a relative path is a usage error" -- "$tcpmsim" \
+  export-fmu "$work/relative/data_load.yaml" --library "$external" -o "$work/x.fmu"
+contains "$work/err" "$work/relative/data_load.yaml: it reads a file by a relative path (a measurement or a data signal), which the FMU does not carry" "the export says why it cannot carry the scenario"
 [[ ! -e $work/x.fmu ]] && echo "ok: no FMU after a refusal" || { echo "FAIL: an FMU written after a refusal"; failures=$((failures + 1)); }
+# A control character in the scenario's name (a --set may carry one) is written into the
+# description as text: XML 1.0 cannot hold it (it was an internal error).
+expect 0 "export-fmu of a name with a control character" -- "$tcpmsim" export-fmu "$external" \
+  --library "$external" --set $'scenario.name="bell\x07<&>"' -o "$work/bell.fmu" --quiet
+expect 0 "its description holds the name as text" -- /usr/bin/python3 -c '
+import sys, zipfile
+text = zipfile.ZipFile(sys.argv[1]).read("modelDescription.xml").decode()
+sys.exit(0 if "modelName=\"bell\\x07&lt;&amp;&gt;\"" in text else text[:300])' "$work/bell.fmu"
+# measure: a run the solver cannot finish is a simulation failure (exit 1), and no file, not
+# even the empty partial file of the output check, is left (it was an output error, exit 4).
+expect 1 "a measurement whose run fails exits 1" -- "$tcpmsim" measure "$discover/ch7_base.yaml" \
+  --set "measurement.file=$work/bench.h5" --set solver.max_steps=1 --bench "$discover/ch7_bench.yaml" \
+  -o "$work/failed.csv"
+contains "$work/err" "tcpmsim: simulation failed: more than 1 solver steps" "the failed measurement says why"
+[[ ! -e $work/failed.csv && ! -e $work/failed.csv.partial ]] && echo "ok: nothing left by a failed measurement" \
+  || { echo "FAIL: a failed measurement left a file"; ls "$work"; failures=$((failures + 1)); }
 
 check_provenance
 
@@ -363,6 +432,11 @@ if /usr/bin/python3 -c "import h5py, matplotlib" 2>/dev/null; then
   contains "$work/err" "none of the channels muscle/colour is in $work/run.h5" "the plot error names the channel and the file"
   expect 1 "a record is not a control-tasks file" -- "$source_dir/tools/tcpmsim-plot" bode "$work/run.h5" -o "$work/none.png"
   contains "$work/err" "holds the sweep tasks (none)" "the plot error says what the file holds"
+  expect 1 "the plot tool names an output it cannot write" -- "$source_dir/tools/tcpmsim-plot" traces "$work/run.h5" -o "$work/none/run.png"
+  contains "$work/err" "tcpmsim-plot: cannot write $work/none/run.png: No such file or directory" "the plot error names the output, not a traceback"
+  expect 1 "the plot tool refuses a dataset that is no trace over time" -- "$source_dir/tools/tcpmsim-plot" traces "$work/run.h5" \
+    --channels inputs/drive.power/times -o "$work/none.png"
+  contains "$work/err" "none of the channels inputs/drive.power/times is in $work/run.h5 as a trace over its time" "the plot error says what the channel is not"
   [[ -s $work/run.png ]] && echo "ok: plot written" || { echo "FAIL: no plot"; failures=$((failures + 1)); }
 fi
 

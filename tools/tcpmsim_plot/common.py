@@ -124,8 +124,12 @@ def save(figure, output):
         raise PlotError(f"{output}: the output must end in .png or .svg")
     if figure.get_layout_engine() is None:
         figure.tight_layout()
-    figure.savefig(output, dpi=110)
-    plt.close(figure)
+    try:
+        figure.savefig(output, dpi=110)
+    except OSError as error:
+        raise PlotError(f"cannot write {output}: {error.strerror or error}") from error
+    finally:
+        plt.close(figure)
     print(f"wrote {output}")
 
 

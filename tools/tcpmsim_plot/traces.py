@@ -61,13 +61,20 @@ def traces_figure(path, channels=None):
     """The figure of a record's traces: `channels` one panel each, or the default panels."""
     with open_file(path, required="time") as record:
         if channels:
-            available = [c for c in channels if c in record and isinstance(record[c], h5py.Dataset)]
+            samples = record["time"].shape[:1]
+
+            def is_trace(channel):  # a series over the record's time (not an input's samples)
+                found = record.get(channel)
+                return isinstance(found, h5py.Dataset) and found.shape[:1] == samples
+
+            available = [c for c in channels if is_trace(c)]
             missing = [c for c in channels if c not in available]
             if missing:
-                print(f"tcpmsim-plot: not in {path}, skipped: {', '.join(missing)}",
-                      file=sys.stderr)
+                print(f"tcpmsim-plot: not in {path} as a trace over its time, skipped: "
+                      f"{', '.join(missing)}", file=sys.stderr)
             if not available:
-                raise PlotError(f"none of the channels {', '.join(channels)} is in {path}")
+                raise PlotError(f"none of the channels {', '.join(channels)} is in {path} "
+                                "as a trace over its time")
             panels = [[channel] for channel in available]
         else:
             panels = default_panels(record)
