@@ -1,10 +1,10 @@
 #include "analysis/coil_fit_analysis.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "analysis/statistics.h"
-#include "sim/config/config_error.h"
 #include "sim/io/delimited_file.h"
 #include "sim/value_check.h"
 
@@ -18,26 +18,23 @@ std::vector<double> step_means(const std::vector<std::vector<double>>& readings)
   return means;
 }
 
-// Refuses a model whose inductance table does not rise or fall all the way: it has no inverse,
-// and no deflection can be read from a measured inductance (a geometry outside the model).
-void check_invertible(const ModelOutcome& outcome, const CoilSpring& spring,
-                      const SequenceAnalysis& a) {
+// Why a model's inductance table has no inverse, or "" when it rises or falls all the way.
+std::string inversion_problem(const ModelOutcome& outcome, const SequenceAnalysis& a) {
   const auto& table = outcome.table_inductance;
   const bool rising = table.back() > table.front();
   for (std::size_t i = 1; i < table.size(); ++i) {
     if (rising ? table[i] > table[i - 1] : table[i] < table[i - 1]) continue;
-    throw ConfigError(SourceLocation{spring.source, 0, 0, ""}, "coil_spring",
-                      "the " + outcome.title +
-                          " inductance is not monotonic in the coil length "
-                          "between " +
-                          number_text(a.table_length.front() * 1e3) + " and " +
-                          number_text(a.table_length.back() * 1e3) + " mm (it turns near " +
-                          number_text(a.table_length[i - 1] * 1e3) +
-                          " mm), so no deflection can be "
-                          "read from a measured inductance: this spring's geometry (" +
-                          number_text(a.turns) + " turns, coil length " +
-                          number_text(a.coil_length * 1e3) + " mm) lies outside that model");
+    const std::string where = number_text(a.table_length[i - 1] * 1e3) + " mm";
+    return "its inductance " +
+           (table[i] == table[i - 1] ? "does not change with the coil length near " + where
+                                     : "turns near " + where) +
+           ", between " + number_text(a.table_length.front() * 1e3) + " and " +
+           number_text(a.table_length.back() * 1e3) + " mm: this geometry (" +
+           number_text(a.turns) +
+           " turns) lies outside the model, and no deflection is read "
+           "from it";
   }
+  return "";
 }
 
 ModelOutcome score(ModelOutcome outcome, const SequenceAnalysis& analysis) {
@@ -90,11 +87,13 @@ SequenceAnalysis analyse_sequence(const CoilSpring& spring, const CoilSequence& 
     for (double l : a.table_length) {
       outcome.table_inductance.push_back(model_inductance(model, spring.at_length(l)));
     }
-    check_invertible(outcome, spring, a);
     // The table inverted by linear inter/extrapolation (MATLAB interp1 'linear', 'extrap').
+    outcome.not_invertible = inversion_problem(outcome, a);
     for (double measured : a.inductance_mean) {
       outcome.predicted_deflection.push_back(
-          interpolate_linear(outcome.table_inductance, a.table_deflection, measured));
+          outcome.not_invertible.empty()
+              ? interpolate_linear(outcome.table_inductance, a.table_deflection, measured)
+              : std::nan(""));
     }
     a.models.push_back(score(std::move(outcome), a));
   }

@@ -20,6 +20,9 @@ struct ModelOutcome {
   std::vector<double> predicted_deflection;  // from the measured mean inductance [m]
   double r_squared = 0.0;                    // (2.15), measured mean L against the model
   double rmse_fraction = 0.0;                // RMSE of the deflection / its range
+  // Why the table has no inverse (its inductance turns, or stays, as the coil is stretched: a
+  // geometry outside the model), when it has none; the predicted deflection is then NaN.
+  std::string not_invertible;
 };
 
 struct SequenceAnalysis {

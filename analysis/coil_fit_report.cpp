@@ -80,6 +80,11 @@ void print_coil_fit_report(std::ostream& out, const std::vector<SequenceAnalysis
   out << "\nThesis Table 2.3: RMSE of the deflection predicted from the measured mean inductance, "
          "% of the deflection range\n(each cell: this program / thesis)\n";
   print_table(out, results, false);
+  for (const auto& a : results)
+    for (const auto& model : a.models)
+      if (!model.not_invertible.empty())
+        out << "  " << a.sequence << ", " << model.title << " (nan): " << model.not_invertible
+            << "\n";
   out << "\nRosa   = (2.7)-(2.10), Weaver's closed-form B, correct Nagaoka coefficient.\n"
          "Rosa*  = the published analysis' Rosa: its Nagaoka coefficient comes from an AGM loop "
          "that never iterates\n         (K = pi/2); compared with the thesis' Rosa column.\n"
@@ -208,6 +213,7 @@ void write_coil_fit_hdf5(const std::string& path, const std::vector<SequenceAnal
       file.write(mg + "/inductance", m.inductance, "H");
       file.write(mg + "/table_inductance", m.table_inductance, "H");
       file.write(mg + "/predicted_deflection", m.predicted_deflection, "m");
+      if (!m.not_invertible.empty()) file.attribute(mg, "not_invertible", m.not_invertible);
       file.write_scalar(mg + "/r_squared", m.r_squared, "1");
       file.write_scalar(mg + "/rmse_percent", 100.0 * m.rmse_fraction, "%");
     }

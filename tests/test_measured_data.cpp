@@ -175,6 +175,11 @@ TEST_CASE("A bad data file is refused with its file, line and column and what wa
     CHECK_THROWS_WITH(read_measured_data("/nonexistent/run.csv", *shared_units()),
                       "/nonexistent/run.csv: error: cannot open the file for reading");
   }
+  SECTION("a directory") {
+    const auto directory = fresh_directory("data_directory");
+    CHECK_THROWS_WITH(read_measured_data(directory.string(), *shared_units()),
+                      directory.string() + ": error: it is a directory, not a data file");
+  }
 }
 
 TEST_CASE("A replayed power step heats the muscle as C dT/dt = P - hA (T - T_amb) says") {

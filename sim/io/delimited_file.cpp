@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -16,6 +17,9 @@ bool is_blank(char c) {
 }  // namespace
 
 DelimitedFile DelimitedFile::read(const std::string& path, char separator) {
+  // A directory opens as a stream on Linux and reads as empty: say what it is.
+  if (std::filesystem::is_directory(path))
+    throw DataFileError({path, 0, 0, {}}, "it is a directory, not a data file");
   std::ifstream stream(path, std::ios::binary);
   if (!stream) throw DataFileError({path, 0, 0, {}}, "cannot open the file for reading");
   std::stringstream buffer;
