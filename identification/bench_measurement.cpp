@@ -34,20 +34,20 @@ Instrument read_instrument(const ConfigNode& entry, const Scenario& scenario) {
     entry.at("unit").fail("'" + instrument.unit + "' is not a unit of " + quantity_unit);
   }
   instrument.noise =
-      entry.quantity_or("noise", instrument.si_unit, 0.0, ValueCheck::non_negative());
+      entry.difference_or("noise", instrument.si_unit, 0.0, ValueCheck::non_negative());
   instrument.resolution =
-      entry.quantity_or("resolution", instrument.si_unit, 0.0, ValueCheck::non_negative());
+      entry.difference_or("resolution", instrument.si_unit, 0.0, ValueCheck::non_negative());
   if (const auto correlated = entry.find("correlated_noise")) {
     correlated->declare({"size", "correlation_time"});
     instrument.correlated_noise =
-        correlated->quantity("size", instrument.si_unit, ValueCheck::non_negative());
+        correlated->difference("size", instrument.si_unit, ValueCheck::non_negative());
     instrument.correlation_time =
         correlated->quantity("correlation_time", "s", ValueCheck::positive());
   }
   if (const auto spikes = entry.find("spikes")) {
     spikes->declare({"probability", "size"});
     instrument.spike_probability = spikes->number("probability", ValueCheck::between(0.0, 1.0));
-    instrument.spike_size = spikes->quantity("size", instrument.si_unit, ValueCheck::positive());
+    instrument.spike_size = spikes->difference("size", instrument.si_unit, ValueCheck::positive());
   }
   return instrument;
 }

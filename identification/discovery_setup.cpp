@@ -199,7 +199,7 @@ void read_floors(const DiscoverRequest& request, const UnitSystem& units, Discov
                        " quantity for " + channel +
                        " (in its unit or one convertible to it), e.g. force=2 mN");
     const auto k = static_cast<std::size_t>(output - outputs.begin());
-    setup.floor[k] = units.convert(value, unit, output->unit);
+    setup.floor[k] = units.convert_difference(value, unit, output->unit);  // 0.5 degC: 0.5 K
     setup.floor_given[k] = true;
   }
   const FitProblem& problem = setup.base.problem;

@@ -57,6 +57,9 @@ std::vector<FitOutput> read_outputs(const ConfigNode& root, const Scenario& mode
     entry.declare({"channel", "output", "noise"});
     FitOutput output;
     output.channel = entry.text("channel");
+    for (const FitOutput& earlier : outputs)
+      if (earlier.channel == output.channel)
+        entry.at("channel").fail("channel '" + output.channel + "' is compared twice");
     output.output = entry.text("output");
     output.unit = named_output(*model.system, entry.at("output"), "model").unit;
     const MeasuredChannel* channel = data.find(output.channel);
@@ -66,7 +69,7 @@ std::vector<FitOutput> read_outputs(const ConfigNode& root, const Scenario& mode
       entry.at("channel").fail("channel '" + output.channel + "' is in " + channel->unit +
                                " and output '" + output.output + "' in " + output.unit);
     }
-    output.noise = entry.quantity("noise", output.unit, ValueCheck::positive());
+    output.noise = entry.difference("noise", output.unit, ValueCheck::positive());
     outputs.push_back(output);
   }
   return outputs;

@@ -56,6 +56,11 @@ std::vector<SweepScenario> read_scenarios(const ConfigNode& root, const std::str
   }
   std::vector<SweepScenario> scenarios;
   for (const auto& [name, node] : named) {
+    // The name is a group of the output (/runs/<run>/<name>), so one HDF5 path element.
+    if (name.empty() || name == "." || name == ".." || name.find('/') != std::string::npos)
+      node.fail("the scenario's name '" + name +
+                "' names its traces' group in the output: expected a name without '/', and not "
+                "'', '.' or '..'");
     const auto path = (directory / node.as_text()).lexically_normal().string();
     if (!std::filesystem::is_regular_file(path)) node.fail("no scenario file '" + path + "'");
     SweepScenario entry{name, path, overrides, nullptr};
@@ -173,7 +178,7 @@ std::vector<double> read_axis_values(const ConfigNode& node, const Axis& axis, s
       const double mean = unit.empty() ? random.number("mean") : random.quantity("mean", unit);
       const double deviation =
           unit.empty() ? random.number("standard_deviation", ValueCheck::non_negative())
-                       : random.quantity("standard_deviation", unit, ValueCheck::non_negative());
+                       : random.difference("standard_deviation", unit, ValueCheck::non_negative());
       values = normal_values(mean, deviation, read_count(random), stream);
     } else {
       const Spacing spacing =

@@ -158,6 +158,11 @@ TEST_CASE("A synthetic measurement is the same for the same seed, and each chann
   // Another instrument on the bench leaves the force's noise as it was.
   CHECK(bitwise_equal(measured("1", temperature + force).find("force")->values,
                       first.find("force")->values));
+  // A noise is a difference: 0.1 degC is 0.1 K (not 273.25 K), the same draws.
+  CHECK(bitwise_equal(measured("1", replaced(temperature, "noise: 0.1 K", "noise: 0.1 degC"))
+                          .find("temperature")
+                          ->values,
+                      measured("1", temperature).find("temperature")->values));
 }
 
 TEST_CASE("A bench file's mistakes are located at their keys") {

@@ -3,6 +3,8 @@
 
 #include <array>
 
+#include "sim/config/config_node.h"
+#include "sim/config/units.h"
 #include "tests/support/test_support.h"
 
 using namespace tcpmsim;
@@ -447,6 +449,23 @@ TEST_CASE("A unit's SI base form: exponents of kg m s A K mol cd rad, a factor a
   CHECK(celsius.offset == Approx(273.15).epsilon(1e-15));
   CHECK(units.si_base("furlong/fortnight").exponents == E{0, 1, -1, 0, 0, 0, 0, 0});
   CHECK_THROWS_AS(units.si_base("quux"), UnitError);
+}
+
+TEST_CASE("A difference (a noise, a spread) converts without the units' offsets") {
+  const UnitSystem& units = *shared_units();
+  CHECK(units.convert_difference(0.5, "degC", "K") == 0.5);
+  CHECK(units.convert_difference(0.5, "K", "degC") == 0.5);
+  CHECK(units.convert(0.5, "degC", "K") == Approx(273.65).epsilon(1e-15));  // a temperature
+  CHECK(units.convert_difference(9.0, "degF", "K") == Approx(5.0).epsilon(1e-15));
+  // Between units without an offset it is the value's conversion to the bit.
+  CHECK(units.convert_difference(2.0, "mN", "N") == units.convert(2.0, "mN", "N"));
+  CHECK_THROWS_AS(units.convert_difference(1.0, "degC", "N"), UnitError);
+  // In a configuration: a key read as a difference, beside one read as a value.
+  const ConfigNode root =
+      ConfigNode::load_text("noise: 0.5 degC\nlevel: 0.5 degC\n", "t.yaml", {}, shared_units());
+  CHECK(root.difference("noise", "K") == 0.5);
+  CHECK(root.quantity("level", "K") == Approx(273.65).epsilon(1e-15));
+  CHECK(root.difference_or("missing", "K", 0.1) == 0.1);
 }
 
 TEST_CASE("A scenario that does not assemble is reported at the section that caused it") {

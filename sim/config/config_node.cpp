@@ -642,6 +642,15 @@ std::vector<std::pair<std::string, ConfigNode>> ConfigNode::entries() const {
 }
 
 double ConfigNode::as_quantity(std::string_view si_unit, const ValueCheck& check) const {
+  return read_quantity(si_unit, check, false);
+}
+
+double ConfigNode::as_difference(std::string_view si_unit, const ValueCheck& check) const {
+  return read_quantity(si_unit, check, true);
+}
+
+double ConfigNode::read_quantity(std::string_view si_unit, const ValueCheck& check,
+                                 bool difference) const {
   document_->log(path_, quantity_text(si_unit), check);
   const bool dimensionless = si_unit == "1";
   const std::string wanted =
@@ -671,7 +680,8 @@ double ConfigNode::as_quantity(std::string_view si_unit, const ValueCheck& check
   }
   if (!unit.empty()) {
     try {
-      value = units().convert(value, unit, si_unit);
+      value = difference ? units().convert_difference(value, unit, si_unit)
+                         : units().convert(value, unit, si_unit);
     } catch (const UnitError& problem) {
       const std::string dimension = dimensionless ? "" : units().describe_dimension(si_unit);
       fail("wrong unit in '" + text + "': " + problem.what() +
@@ -773,6 +783,22 @@ double ConfigNode::quantity_or(std::string_view key, std::string_view si_unit, d
   document_->log(child_path(key), quantity_text(si_unit), check);
   document_->read(child_path(key)).fallback = stated;
   if (auto value = find(key)) return value->as_quantity(si_unit, check);
+  record_default(key, stated);
+  return fallback;
+}
+
+double ConfigNode::difference(std::string_view key, std::string_view si_unit,
+                              const ValueCheck& check) const {
+  return at(key).as_difference(si_unit, check);
+}
+
+double ConfigNode::difference_or(std::string_view key, std::string_view si_unit, double fallback,
+                                 const ValueCheck& check) const {
+  const std::string stated =
+      number_text(fallback) + (si_unit == "1" ? "" : " " + std::string(si_unit));
+  document_->log(child_path(key), quantity_text(si_unit), check);
+  document_->read(child_path(key)).fallback = stated;
+  if (auto value = find(key)) return value->as_difference(si_unit, check);
   record_default(key, stated);
   return fallback;
 }

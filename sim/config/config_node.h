@@ -116,6 +116,9 @@ class ConfigNode {
 
   // This node as a typed scalar.
   double as_quantity(std::string_view si_unit, const ValueCheck& check = {}) const;
+  // A difference of the quantity (a noise, a spread): converted without a unit's offset, so
+  // that 0.5 degC is 0.5 K, not 273.65 K.
+  double as_difference(std::string_view si_unit, const ValueCheck& check = {}) const;
   double as_number(const ValueCheck& check = {}) const;
   long as_integer(const ValueCheck& check = {}) const;
   bool as_bool() const;
@@ -128,6 +131,10 @@ class ConfigNode {
                   const ValueCheck& check = {}) const;
   double quantity_or(std::string_view key, std::string_view si_unit, double fallback,
                      const ValueCheck& check = {}) const;
+  double difference(std::string_view key, std::string_view si_unit,
+                    const ValueCheck& check = {}) const;
+  double difference_or(std::string_view key, std::string_view si_unit, double fallback,
+                       const ValueCheck& check = {}) const;
   double number(std::string_view key, const ValueCheck& check = {}) const;
   double number_or(std::string_view key, double fallback, const ValueCheck& check = {}) const;
   long integer(std::string_view key, const ValueCheck& check = {}) const;
@@ -174,6 +181,7 @@ class ConfigNode {
   bool present(std::string_view key) const;  // has() without marking the key optional
   [[noreturn]] void fail_missing(std::string_view key) const;
   [[noreturn]] void fail_empty_file(std::string_view key) const;
+  double read_quantity(std::string_view si_unit, const ValueCheck& check, bool difference) const;
 
   std::shared_ptr<ConfigDocument> document_;
   YAML::Node node_;

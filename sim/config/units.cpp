@@ -219,4 +219,13 @@ double UnitSystem::convert(double value, std::string_view from, std::string_view
   return converter(from, to)(value);
 }
 
+double UnitSystem::convert_difference(double value, std::string_view from,
+                                      std::string_view to) const {
+  const double converted = convert(value, from, to);  // checks that the two are convertible
+  const SiBaseUnit source = si_base(from), target = si_base(to);
+  if (source.offset == 0.0 && target.offset == 0.0) return converted;
+  // value [base] = factor * value [unit] + offset: a difference scales by the factors alone.
+  return value * source.factor / target.factor;
+}
+
 }  // namespace tcpmsim

@@ -40,6 +40,9 @@ class UnitSystem {
   // udunits knows or does not measure the same quantity as `to`: a unit and its reciprocal
   // (s and Hz, mm/N and N/mm) are not convertible here, although udunits would invert them.
   double convert(double value, std::string_view from, std::string_view to) const;
+  // Converts a difference of two values (a noise, a spread): without the units' offsets, so
+  // 0.5 degC is 0.5 K. Between units without an offset it is convert's value to the bit.
+  double convert_difference(double value, std::string_view from, std::string_view to) const;
   bool convertible(std::string_view from, std::string_view to) const;
   // The conversion from `from` into `to` as a function, parsed once, for converting many
   // values (a data file's column). Throws UnitError as convert does.
