@@ -172,6 +172,16 @@ int run_batch(const Options& options) {
   return failed > 0 ? kSimulationFailed : kSuccess;
 }
 
+// Refuses an output that is one of the command's own input files, which writing would replace.
+void check_not_an_input(const std::string& output, const std::vector<std::string>& inputs) {
+  for (const auto& input : inputs) {
+    std::error_code error;
+    if (std::filesystem::equivalent(output, input, error))
+      throw tcpmsim::UsageError("-o " + output + " is " + input +
+                                ", an input of this command: writing would replace it");
+  }
+}
+
 int run(const Options& options) {
   if (options.configs.size() > 1) return run_batch(options);
   tcpmsim::Scenario scenario = tcpmsim::load_scenario(options.configs.front(), options.overrides,
@@ -181,6 +191,7 @@ int run(const Options& options) {
   tcpmsim::check_record_size(scenario, static_cast<double>(options.max_output_bytes));
   const std::string output =
       options.output.empty() ? "results/" + scenario.settings.name + ".h5" : options.output;
+  check_not_an_input(output, options.configs);
   // Nobody sets an external input in a run of its own: say what it holds.
   for (const auto& input : scenario.system->external_inputs()) {
     if (options.quiet) break;
@@ -277,6 +288,9 @@ int sweep(const Options& options) {
       tcpmsim::sweep::load_sweep(options.config, options.overrides, units);
   tcpmsim::sweep::SweepOptions settings = options.sweep;
   if (settings.output.empty()) settings.output = "results/" + spec.name + ".h5";
+  std::vector<std::string> inputs{options.config};
+  for (const auto& scenario : spec.scenarios) inputs.push_back(scenario.file);
+  check_not_an_input(settings.output, inputs);
   tcpmsim::sweep::SweepOutcome outcome;
   {
     tcpmsim::BatchProgress progress(stderr, "sweep");
@@ -497,6 +511,7 @@ int measure(const Options& options) {
   tcpmsim::check_record_size(scenario, tcpmsim::kDefaultRecordLimit);  // its samples, in memory
   const std::string output =
       options.output.empty() ? "results/" + scenario.settings.name + ".csv" : options.output;
+  check_not_an_input(output, {options.config, options.bench});
   tcpmsim::prepare_output_file(output);  // before the run, as `run` checks its record's path
   const std::string partial = tcpmsim::partial_path(output);
   std::string measured;

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
 
+#include "sim/config/config_error.h"
 #include "sim/io/record_layout.h"
 #include "sim/run.h"
 #include "sim/value_check.h"
@@ -155,6 +157,8 @@ const MemoryRun& StepSimulator::record() const {
 }
 
 std::string StepSimulator::save(const std::string& path) const {
+  if (std::filesystem::path(path).filename().empty())
+    throw UsageError("save: expected a record's file name, got '" + path + "'");
   return save_record(scenario_, *context_, record(), path);
 }
 

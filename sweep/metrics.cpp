@@ -201,13 +201,13 @@ MetricSpec read_metric(const ConfigNode& node, const std::string& scenario_name,
     }
   }
   metric.from = node.quantity_or("from", "s", 0.0, ValueCheck::non_negative());
-  metric.to = node.quantity_or("to", "s", duration, ValueCheck::positive());
-  if (metric.to <= metric.from) {
-    if (node.has("to")) node.at("to").fail("the window must end after it starts ('from')");
+  // Without 'to' the window ends with each run (a structural axis may change its duration).
+  if (node.has("to")) metric.to = node.quantity("to", "s", ValueCheck::positive());
+  if (metric.to <= metric.from) node.at("to").fail("the window must end after it starts ('from')");
+  if (metric.from >= duration)
     node.at("from").fail("the window starts after the scenario ends (" + number_text(duration) +
                          " s)");
-  }
-  if (metric.to > duration + kTimeSlack)
+  if (node.has("to") && metric.to > duration + kTimeSlack)
     node.at("to").fail("the window ends after the scenario does (" + number_text(duration) + " s)");
   if (metric.kind == MetricKind::rise_time) {
     if (node.has("reference"))
@@ -234,10 +234,10 @@ MetricSpec read_metric(const ConfigNode& node, const std::string& scenario_name,
     const auto* sweep = dynamic_cast<const SteppedSineSignal*>(signal);
     if (metric.kind == MetricKind::bandwidth && sweep == nullptr)
       node.at("reference").fail("a bandwidth needs a stepped_sine_sweep reference");
-    if (metric.kind == MetricKind::bandwidth && sweep->end_time() > metric.to + kTimeSlack)
+    if (metric.kind == MetricKind::bandwidth && sweep->end_time() > duration + kTimeSlack)
       node.at("reference")
           .fail("the sweep ends at " + number_text(sweep->end_time()) +
-                " s, after the scenario does (" + number_text(metric.to) + " s)");
+                " s, after the scenario does (" + number_text(duration) + " s)");
   }
   return metric;
 }

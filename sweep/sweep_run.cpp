@@ -2,11 +2,13 @@
 
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
 #include "kinds/standard_kinds.h"
 #include "sim/memory_record.h"
 #include "sim/not_a_number.h"
 #include "sim/run.h"
+#include "sim/value_check.h"
 
 namespace tcpmsim::sweep {
 namespace {
@@ -23,14 +25,23 @@ double derived_value(const DerivedParameter& derived, const Context& context) {
   return value;
 }
 
-RunTrace keep_trace(const SweepSpec& spec, const SweepScenario& entry, const Scenario& scenario,
-                    const MemoryRecord& record) {
+// Every how many samples a run's trace keeps one. The sweep file checked its scenarios' output
+// intervals; a structural axis may change one, so a run checks its own before it integrates.
+std::size_t trace_stride(const SweepSpec& spec, const Scenario& scenario) {
+  if (spec.traces != TraceStorage::decimated) return 1;
+  const double ratio = spec.trace_interval / scenario.settings.output_interval;
+  if (!(std::round(ratio) >= 1.0) || std::abs(ratio - std::round(ratio)) > 1e-9 * ratio)
+    throw std::runtime_error("store.interval (" + number_text(spec.trace_interval) +
+                             " s) is no multiple of this run's output interval (" +
+                             number_text(scenario.settings.output_interval, 17) +
+                             " s): its traces cannot be decimated");
+  return static_cast<std::size_t>(std::llround(ratio));
+}
+
+RunTrace keep_trace(const SweepScenario& entry, const Scenario& scenario,
+                    const MemoryRecord& record, std::size_t stride) {
   RunTrace trace;
   trace.scenario = entry.name;
-  std::size_t stride = 1;
-  if (spec.traces == TraceStorage::decimated)
-    stride = static_cast<std::size_t>(
-        std::llround(spec.trace_interval / scenario.settings.output_interval));
   for (std::size_t k = 0; k < record.time.size(); k += stride) trace.time.push_back(record.time[k]);
   for (const auto& channel : scenario.system->channels()) {
     if (!channel.recorded) continue;
@@ -75,6 +86,7 @@ void run_scenario_at(const SweepSpec& spec, const SweepScenario& entry, std::siz
     context.set_parameter(derived.path, value);
     result.values[spec.axes.size() + d] = value;
   }
+  const std::size_t stride = trace_stride(spec, *scenario);
   MemoryRecord record(*scenario->system);
   integrate(*scenario, context, record);
   for (std::size_t m = 0; m < spec.metrics.size(); ++m) {
@@ -90,7 +102,7 @@ void run_scenario_at(const SweepSpec& spec, const SweepScenario& entry, std::siz
     }
   }
   if (spec.traces != TraceStorage::none)
-    result.traces.push_back(keep_trace(spec, entry, *scenario, record));
+    result.traces.push_back(keep_trace(entry, *scenario, record, stride));
 }
 
 }  // namespace

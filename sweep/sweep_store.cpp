@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "sim/config/config_node.h"
+#include "sim/io/delimited_file.h"
 #include "sim/io/hdf5_files.h"
 #include "sim/io/hdf5_writer.h"
 
@@ -61,20 +62,36 @@ void copy_run_traces(const std::string& path, const std::string& name, Hdf5Write
   }
 }
 
-Part read_part(const std::string& path) {
+// A part whose contents are not what this sweep's runs write (damaged, or edited).
+[[noreturn]] void refuse_part(const std::string& path, const std::string& problem) {
+  throw DataFileError({path, 0, 0, {}}, problem + ": not a run of this sweep as it writes them " +
+                                            "(damaged?); remove it and --resume to run it again");
+}
+
+// `columns` and `metrics`: how many values and metrics this sweep's runs write.
+Part read_part(const std::string& path, std::size_t columns, std::size_t metrics) {
   const std::lock_guard lock(hdf5_mutex());
+  Part part;
   try {
     const H5::H5File file(path, H5F_ACC_RDONLY);
-    Part part;
     part.values = read_doubles(file, "/values");
     part.metrics = read_doubles(file, "/metrics");
-    part.succeeded = read_doubles(file, "/succeeded").at(0) != 0.0;
-    part.message = read_texts(file, "/message").at(0);  // a scalar: one text
-    part.wall_seconds = read_doubles(file, "/wall_seconds").at(0);
-    return part;
+    const auto succeeded = read_doubles(file, "/succeeded");
+    const auto message = read_texts(file, "/message");  // a scalar: one text
+    const auto wall_seconds = read_doubles(file, "/wall_seconds");
+    if (succeeded.size() != 1 || message.size() != 1 || wall_seconds.size() != 1)
+      refuse_part(path, "its status, message or wall time is not one value");
+    part.succeeded = succeeded[0] != 0.0;
+    part.message = message[0];
+    part.wall_seconds = wall_seconds[0];
   } catch (const H5::Exception& error) {
-    throw std::runtime_error("cannot read " + path + ": " + error.getDetailMsg());
+    refuse_part(path, "cannot read it: " + error.getDetailMsg());
   }
+  if (part.values.size() != columns || part.metrics.size() != metrics)
+    refuse_part(path, "it holds " + std::to_string(part.values.size()) + " values and " +
+                          std::to_string(part.metrics.size()) + " metrics where the sweep has " +
+                          std::to_string(columns) + " and " + std::to_string(metrics));
+  return part;
 }
 
 void write_text_file(const std::string& path, const std::string& text) {
@@ -183,7 +200,7 @@ std::size_t SweepStore::merge(const std::string& invocation) const {
   std::size_t failed = 0;
   Hdf5Writer output(output_);
   for (std::size_t id = 0; id < runs; ++id) {
-    const Part part = read_part(part_path(id));
+    const Part part = read_part(part_path(id), columns.size(), metrics.size());
     ids.push_back(static_cast<long long>(id));
     for (std::size_t c = 0; c < columns.size(); ++c) values[c].push_back(part.values.at(c));
     for (std::size_t m = 0; m < metrics.size(); ++m) metrics[m].push_back(part.metrics.at(m));

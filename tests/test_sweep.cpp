@@ -254,6 +254,76 @@ TEST_CASE("a structural axis builds the scenario again for each of its values", 
   CHECK(last[1] > last[0]);  // heated 10 s longer
 }
 
+TEST_CASE("a metric without 'to' ends with each run, whatever duration its structural axis gives",
+          "[sweep]") {
+  SweepDirectory directory;
+  // The base runs 12 s; the second run 30 s, past the base's end.
+  const std::string text =
+      "sweep: {name: durations}\n" + kStepScenario +
+      "set: [scenario.duration=12 s]\n"
+      "axes:\n  - {parameter: scenario.duration, values: [12 s, 30 s]}\n"
+      "metrics:\n  - {name: last, type: final_value, channel: muscle/temperature}\n";
+  const auto spec = load_sweep(directory.write("durations.yaml", text), {}, shared_units());
+  const std::string output = (directory.path / "durations.h5").string();
+  run_sweep(spec, {output, 1, false}, shared_units());
+  // 0.5 W from t = 10 s into C = 0.55 J/K, hA = 73 mW/K: T - T_amb = P/hA (1 - exp(-(t - 10
+  // s)/tau)).
+  const double tau = 0.55 / 0.073, rise = 0.5 / 0.073, ambient = 296.15;
+  const auto last = read_column(output, "last");
+  CHECK(last[0] == Approx(ambient + rise * (1.0 - std::exp(-2.0 / tau))).epsilon(1e-6));
+  CHECK(last[1] == Approx(ambient + rise * (1.0 - std::exp(-20.0 / tau))).epsilon(1e-6));
+}
+
+TEST_CASE("a spread in degC is a temperature difference: 0.5 degC spreads by 0.5 K", "[sweep]") {
+  SweepDirectory directory;
+  const std::string text =
+      "sweep: {name: spread}\n" + kStepScenario +
+      "axes:\n  - {parameter: muscle.thermal.ambient_temperature, random: {distribution: normal, "
+      "mean: 23 degC, standard_deviation: 0.5 degC, count: 400}}\n";
+  const auto spec = load_sweep(directory.write("spread.yaml", text), {}, shared_units());
+  double sum = 0.0, squares = 0.0;
+  for (const auto& run : spec.runs) sum += run[0];
+  const double mean = sum / static_cast<double>(spec.runs.size());
+  for (const auto& run : spec.runs) squares += (run[0] - mean) * (run[0] - mean);
+  const double deviation = std::sqrt(squares / static_cast<double>(spec.runs.size() - 1));
+  // 400 draws: the mean within 4 standard errors (0.1 K), the deviation within 15 %.
+  CHECK(mean == Approx(296.15).margin(0.1));
+  CHECK(deviation == Approx(0.5).epsilon(0.15));
+}
+
+TEST_CASE(
+    "a structural axis on the output rate that decimated traces cannot follow fails that "
+    "run, before it integrates, and says why",
+    "[sweep]") {
+  SweepDirectory directory;
+  const std::string text = "sweep: {name: rates}\n" + kStepScenario +
+                           "set: [scenario.duration=8 s]\n"
+                           "axes:\n  - {parameter: output.rate, values: [1 Hz, 0.25 Hz]}\n"
+                           "store: {traces: decimated, interval: 1 s}\n";
+  const auto spec = load_sweep(directory.write("rates.yaml", text), {}, shared_units());
+  const std::string output = (directory.path / "rates.h5").string();
+  const auto outcome = run_sweep(spec, {output, 1, false}, shared_units());
+  CHECK(outcome.failed == 1);
+  CHECK(summary_texts(output, "status") == std::vector<std::string>{"ok", "failed"});
+  CHECK(summary_texts(output, "message")[1] ==
+        "store.interval (1 s) is no multiple of this run's output interval (4 s): its traces "
+        "cannot be decimated");
+}
+
+TEST_CASE("a scenario's name is one group of the output: '/', '.', '..' and '' are refused",
+          "[sweep]") {
+  const std::string file = source_path("configs/sweeps/thermal_step.yaml");
+  for (const std::string name : {"a/b", ".", "..", ""}) {
+    const std::string text = "sweep: {name: named}\nscenarios: {\"" + name + "\": " + file +
+                             "}\naxes:\n  - {parameter: muscle.thermal.conductance, values: "
+                             "[29 mW/K]}\n";
+    CHECK_THAT(sweep_error(text),
+               Catch::Contains("the scenario's name '" + name +
+                               "' names its traces' group in the output: expected a name without "
+                               "'/', and not '', '.' or '..'"));
+  }
+}
+
 TEST_CASE("a sweep's results do not depend on the thread count, and obey C dT/dt = P - hA dT",
           "[sweep][thread]") {
   SweepDirectory directory;
@@ -339,6 +409,36 @@ TEST_CASE("a resumed sweep redoes only the missing runs and refuses another swee
   CHECK(!std::filesystem::exists(resumed + ".parts"));
   for (const std::string column : {"time_constant", "peak_temperature", "heat"})
     CHECK(bitwise_equal(read_column(whole, column), read_column(resumed, column)));
+}
+
+TEST_CASE(
+    "a stored run that is not what the sweep writes is refused by name, and no output "
+    "is left",
+    "[sweep]") {
+  SweepDirectory directory;
+  const auto spec = load_sweep(directory.write("grid.yaml", kGridSweep), {}, shared_units());
+  const std::string output = (directory.path / "edited.h5").string();
+  {
+    const SweepStore store(spec, output, SweepStore::Access::create);
+    ScenarioLoader loader(shared_units());
+    store.write(execute_run(spec, 0, loader));
+  }
+  const std::string part = output + ".parts/run_0.h5";
+  REQUIRE(std::filesystem::exists(part));
+  {  // its values emptied, as an edit (or damage) might leave them
+    H5::H5File file(part, H5F_ACC_RDWR);
+    file.unlink("/values");
+    const hsize_t none = 0;
+    file.createDataSet("/values", H5::PredType::NATIVE_DOUBLE, H5::DataSpace(1, &none));
+  }
+  CHECK_THROWS_WITH(run_sweep(spec, {output, 1, true}, shared_units()),
+                    part + ": error: it holds 0 values and " + std::to_string(spec.metrics.size()) +
+                        " metrics where the sweep has 2 and " +
+                        std::to_string(spec.metrics.size()) +
+                        ": not a run of this sweep as it writes them (damaged?); remove it and "
+                        "--resume to run it again");
+  CHECK(!std::filesystem::exists(output));
+  CHECK(!std::filesystem::exists(output + ".partial"));
 }
 
 TEST_CASE("no sweep starts into the parts of one that still writes them", "[sweep]") {

@@ -27,6 +27,8 @@ void create_parent_directories(const std::string& path) {
 }
 
 void check_output_path(const std::string& path) {
+  if (std::filesystem::path(path).filename().empty())
+    throw std::runtime_error("cannot write " + path + ": it names a directory (it ends in /)");
   std::error_code error;
   const auto status = std::filesystem::status(path, error);
   if (std::filesystem::is_directory(status)) {

@@ -25,7 +25,8 @@ std::string partial_path(const std::string& path);
 void create_parent_directories(const std::string& path);
 
 // Checks, before any work, that a file can be put at `path`: it must be a regular file or not
-// exist (a directory or a device is refused), and its directories are created. A failure is a
+// exist (a directory, a path ending in '/' or a device is refused), and its directories are
+// created. A failure is a
 // std::runtime_error naming `path` and the reason.
 void check_output_path(const std::string& path);
 

@@ -95,6 +95,14 @@ contains "$work/err" "more than 3 solver steps" "the failure is explained"
 [[ -s $work/fail.failed.h5 && ! -e $work/fail.h5 && ! -e $work/fail.h5.partial ]] \
   && echo "ok: failed record kept as .failed.h5 only" || { echo "FAIL: failed record"; ls "$work"; failures=$((failures + 1)); }
 
+# An output that is the command's own input would replace it; one ending in '/' names a directory.
+cp "$config" "$work/own.yaml"
+expect 2 "run -o its own scenario is a usage error" -- "$tcpmsim" run "$work/own.yaml" --set "scenario.duration=1 s" -o "$work/own.yaml"
+contains "$work/err" "-o $work/own.yaml is $work/own.yaml, an input of this command: writing would replace it" "the output is named as the input"
+cmp -s "$config" "$work/own.yaml" && echo "ok: the scenario is untouched" || { echo "FAIL: run replaced its scenario"; failures=$((failures + 1)); }
+expect 4 "run -o a path ending in / is an output error before the run" -- "$tcpmsim" run "$config" --set "scenario.duration=1 s" -o "$work/newdir/"
+contains "$work/err" "cannot write $work/newdir/: it names a directory (it ends in /)" "the output error says why"
+[[ ! -e $work/newdir ]] && echo "ok: nothing made for an output ending in /" || { echo "FAIL: $work/newdir made"; failures=$((failures + 1)); }
 expect 4 "an unwritable output is an output error" -- "$tcpmsim" run "$config" --set "scenario.duration=1 s" -o /proc/tcpmsim/run.h5
 
 # The analysis commands share the scenario rules: usage errors exit 2, configuration errors 3.
@@ -224,6 +232,14 @@ expect 3 "a window inside a gap in the data is a configuration error" -- "$tcpms
   "$work/in_gap.yaml" --data "$work/gap.csv" --out "$work/fit_between"
 contains "$work/err" "in_gap.yaml:5:13: error: validation: the window [150 s, 250 s] holds no sample of the data" "the window inside the gap is located"
 [[ ! -e $work/fit_between ]] && echo "ok: nothing written for an empty window" || { echo "FAIL: a fit directory after a window error"; failures=$((failures + 1)); }
+# The same measured channel compared twice would write one dataset twice, after the whole fit.
+fit_file twice.yaml '[0 s, 400 s]'
+sed -i 's|^outputs: .*|outputs: [{channel: force, output: load.force, noise: 1 mN}, {channel: force, output: load.force, noise: 2 mN}]|' "$work/twice.yaml"
+expect 3 "a fit comparing a channel twice is a configuration error" -- "$tcpmsim" fit "$work/twice.yaml" \
+  --data "$work/measured.csv" --out "$work/fit_twice"
+contains "$work/err" "twice.yaml:2:" "the second comparison is located"
+contains "$work/err" "outputs[1].channel: channel 'force' is compared twice" "the channel compared twice is named"
+[[ ! -e $work/fit_twice ]] && echo "ok: nothing written for a channel compared twice" || { echo "FAIL: a fit directory after the error"; failures=$((failures + 1)); }
 # Issue 31: a window of fewer samples than parameters + 1 fits them exactly, with no residual left
 # to estimate their errors: refused, not reported as identified.
 fit_file one_sample.yaml '[100 s, 100.03 s]'
@@ -416,6 +432,10 @@ expect 0 "its description holds the name as text" -- /usr/bin/python3 -c '
 import sys, zipfile
 text = zipfile.ZipFile(sys.argv[1]).read("modelDescription.xml").decode()
 sys.exit(0 if "modelName=\"bell\\x07&lt;&amp;&gt;\"" in text else text[:300])' "$work/bell.fmu"
+cp "$discover/ch7_bench.yaml" "$work/own_bench.yaml"
+expect 2 "measure -o its own bench file is a usage error" -- "$tcpmsim" measure "$discover/ch7_base.yaml" \
+  --set "measurement.file=$work/bench.h5" --bench "$work/own_bench.yaml" -o "$work/own_bench.yaml"
+cmp -s "$discover/ch7_bench.yaml" "$work/own_bench.yaml" && echo "ok: the bench file is untouched" || { echo "FAIL: measure replaced its bench file"; failures=$((failures + 1)); }
 # measure: a run the solver cannot finish is a simulation failure (exit 1), and no file, not
 # even the empty partial file of the output check, is left (it was an output error, exit 4).
 expect 1 "a measurement whose run fails exits 1" -- "$tcpmsim" measure "$discover/ch7_base.yaml" \
