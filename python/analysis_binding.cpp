@@ -97,8 +97,14 @@ RecordChannels channels_of(const py::object& source) {
   return read_record_channels(py::str(source).cast<std::string>());  // a path
 }
 
-double or_default(const py::object& value, double fallback) {
-  return value.is_none() ? fallback : value.cast<double>();
+// An optional number argument; anything but a number or None is a TypeError naming it.
+double or_default(const char* name, const py::object& value, double fallback) {
+  if (value.is_none()) return fallback;
+  if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value) &&
+      !py::hasattr(value, "__float__"))
+    throw py::type_error(std::string("analyze: ") + name + ": expected a number, got " +
+                         py::repr(value).cast<std::string>());
+  return py::float_(value).cast<double>();
 }
 
 }  // namespace
@@ -113,10 +119,10 @@ void bind_analysis(py::module_& module) {
         request.output = response;
         request.reference = reference;
         request.inputs = inputs;
-        request.from = or_default(start, -std::numeric_limits<double>::infinity());
-        request.to = or_default(end, std::numeric_limits<double>::infinity());
+        request.from = or_default("start", start, -std::numeric_limits<double>::infinity());
+        request.to = or_default("end", end, std::numeric_limits<double>::infinity());
         request.method = method;
-        request.segment = or_default(segment, 0.0);
+        request.segment = or_default("segment", segment, 0.0);
         request.steps.rise = {1.0 - rise, rise};
         request.steps.settling_band = settling_band;
         const RecordChannels channels = channels_of(source);

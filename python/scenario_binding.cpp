@@ -9,7 +9,9 @@
 
 #include "kinds/standard_kinds.h"
 #include "python/bindings.h"
+#include "sim/config/config_error.h"
 #include "sim/run.h"
+#include "sim/value_check.h"
 #include "sweep/run_pool.h"
 
 namespace py = pybind11;
@@ -243,6 +245,9 @@ void bind_scenario(py::module_& module) {
           [failure = py::object(module.attr("SolverFailure"))](
               const PyScenario& self, const py::object& duration, const py::object& rate,
               bool check, double max_output_size) {
+            if (!(max_output_size > 0.0))  // NaN too: a limit that no run could meet
+              throw UsageError("run: max_output_size: expected a positive number of bytes, got " +
+                               number_text(max_output_size));
             PyResult result =
                 run_scenario(self.with(run_overrides(duration, rate)), max_output_size);
             if (check && result.run->status == "failed") raise_failure(failure, result);

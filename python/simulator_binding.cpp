@@ -54,11 +54,23 @@ class PySimulator {
     return outputs();
   }
 
+  // An input's value as a number; anything else is a TypeError that names the input (pybind11's
+  // own cast error is a bare RuntimeError).
+  static double input_value(const std::string& name, const py::handle& value) {
+    if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value) &&
+        !py::hasattr(value, "__float__"))
+      throw py::type_error("inputs: " + name + ": expected a number in the input's SI unit, got " +
+                           py::repr(value).cast<std::string>());
+    return py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
+  }
+
   void set_inputs(const py::object& inputs) {
     if (inputs.is_none()) return;
     if (py::isinstance<py::dict>(inputs)) {
-      for (const auto& [name, value] : inputs.cast<py::dict>())
-        simulator_->set_input(py::str(name).cast<std::string>(), value.cast<double>());
+      for (const auto& [name, value] : inputs.cast<py::dict>()) {
+        const std::string input = py::str(name).cast<std::string>();
+        simulator_->set_input(input, input_value(input, value));
+      }
       return;
     }
     // A bare number for the only input.
@@ -67,7 +79,7 @@ class PySimulator {
       throw py::type_error("inputs: expected a dict {name: value} (the scenario has " +
                            std::to_string(all.size()) + " external inputs)");
     }
-    simulator_->set_input(all.front().name, inputs.cast<double>());
+    simulator_->set_input(all.front().name, input_value(all.front().name, inputs));
   }
 
   // Every recorded series at time(), as tcpmsim.Result names them: a float, or an array over a

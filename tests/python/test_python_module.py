@@ -229,6 +229,11 @@ class PythonErrorsAreCommandLineErrors(unittest.TestCase):
         with self.assertRaises(TypeError) as raised:
             tcpmsim.Scenario.from_yaml(CONFIGS[0], set=["muscle.mechanics.k2=3 mN/mm"])
         self.assertIn("set: expected a dict of path: value", str(raised.exception))
+        # A window that is no number is a TypeError naming it, not pybind11's RuntimeError.
+        result = tcpmsim.Scenario.from_yaml("configs/analysis/power_steps.yaml").run()
+        for name, value in (("start", "5 s"), ("end", [1]), ("segment", "x")):
+            with self.assertRaisesRegex(TypeError, f"analyze: {name}: expected a number, got"):
+                tcpmsim.analyze(result, "muscle/force", **{name: value})
 
     def test_a_bad_set_raises_the_command_lines_message(self):
         for setting, error in [("muscle.mechanics.k2=3 kg", tcpmsim.ConfigError),
@@ -282,6 +287,11 @@ class PythonErrorsAreCommandLineErrors(unittest.TestCase):
             tcpmsim.run_many([scenario.copy().set("output.rate", "1e9 Hz")])
         small = scenario.run(duration=10, max_output_size=1e9)
         self.assertEqual(small["time"][-1], 10.0)
+        # A limit no run could meet is the argument's error, not the file's output.rate.
+        for limit in (float("nan"), -1.0, 0.0):
+            with self.assertRaisesRegex(tcpmsim.UsageError, "run: max_output_size: expected a "
+                                                            "positive number of bytes"):
+                scenario.run(duration=10, max_output_size=limit)
 
     def test_a_solver_failure_raises_with_the_samples_before_it(self):
         scenario = tcpmsim.Scenario.from_yaml(CONFIGS[0]).set("solver.max_steps", 200)

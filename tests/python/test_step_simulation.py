@@ -64,8 +64,19 @@ class SimulatorTest(unittest.TestCase):
             simulator.set_input("controller.power_command", 5.0)
         with self.assertRaisesRegex(ValueError, "no external input 'drive.power'"):
             simulator.step({"drive.power": 1.0}, 0.05)
+        # A value that is no number is a TypeError naming the input, not pybind11's bare
+        # RuntimeError; a numpy number is a number.
+        for bad in ("abc", None, [1.0]):
+            with self.assertRaisesRegex(TypeError, "inputs: controller.power_command: expected a "
+                                                   "number in the input's SI unit, got"):
+                simulator.step({"controller.power_command": bad}, 0.05)
+        with self.assertRaisesRegex(TypeError, "inputs: controller.power_command: expected"):
+            simulator.step("abc", 0.05)
+        with self.assertRaisesRegex(ValueError, "save: expected a record's file name, got ''"):
+            simulator.save("")
         with self.assertRaisesRegex(ValueError, "the run is at t = 0.5 s"):
             simulator.advance_to(0.1)
+        simulator.step({"controller.power_command": np.float32(2.0)}, 0.05)  # a numpy number
         with self.assertRaises(tcpmsim.ParameterError):
             simulator.set("muscle.mechanics.k2", -1.0)
         first = simulator.reset()
