@@ -778,13 +778,7 @@ void ConfigNode::record_default(std::string_view key, const std::string& value) 
 
 double ConfigNode::quantity_or(std::string_view key, std::string_view si_unit, double fallback,
                                const ValueCheck& check) const {
-  const std::string stated =
-      number_text(fallback) + (si_unit == "1" ? "" : " " + std::string(si_unit));
-  document_->log(child_path(key), quantity_text(si_unit), check);
-  document_->read(child_path(key)).fallback = stated;
-  if (auto value = find(key)) return value->as_quantity(si_unit, check);
-  record_default(key, stated);
-  return fallback;
+  return read_quantity_or(key, si_unit, fallback, check, false);
 }
 
 double ConfigNode::difference(std::string_view key, std::string_view si_unit,
@@ -794,11 +788,16 @@ double ConfigNode::difference(std::string_view key, std::string_view si_unit,
 
 double ConfigNode::difference_or(std::string_view key, std::string_view si_unit, double fallback,
                                  const ValueCheck& check) const {
+  return read_quantity_or(key, si_unit, fallback, check, true);
+}
+
+double ConfigNode::read_quantity_or(std::string_view key, std::string_view si_unit, double fallback,
+                                    const ValueCheck& check, bool difference) const {
   const std::string stated =
       number_text(fallback) + (si_unit == "1" ? "" : " " + std::string(si_unit));
   document_->log(child_path(key), quantity_text(si_unit), check);
   document_->read(child_path(key)).fallback = stated;
-  if (auto value = find(key)) return value->as_difference(si_unit, check);
+  if (auto value = find(key)) return value->read_quantity(si_unit, check, difference);
   record_default(key, stated);
   return fallback;
 }

@@ -182,6 +182,8 @@ class ConfigNode {
   [[noreturn]] void fail_missing(std::string_view key) const;
   [[noreturn]] void fail_empty_file(std::string_view key) const;
   double read_quantity(std::string_view si_unit, const ValueCheck& check, bool difference) const;
+  double read_quantity_or(std::string_view key, std::string_view si_unit, double fallback,
+                          const ValueCheck& check, bool difference) const;
 
   std::shared_ptr<ConfigDocument> document_;
   YAML::Node node_;
