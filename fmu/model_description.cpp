@@ -11,14 +11,17 @@
 #include <sstream>
 #include <string_view>
 
+#include "sim/config/config_error.h"
 #include "sim/value_check.h"
 
 namespace tcpmsim::fmu {
 namespace {
 
+// XML text of `text`: XML 1.0 cannot hold control characters, so they (and a byte of no UTF-8
+// sequence) are written as printable() writes them ("\x07"), then &, <, > and " as entities.
 std::string escaped(const std::string& text) {
   std::string out;
-  for (const char c : text) {
+  for (const char c : printable(text)) {
     switch (c) {
       case '&':
         out += "&amp;";
@@ -32,19 +35,8 @@ std::string escaped(const std::string& text) {
       case '"':
         out += "&quot;";
         break;
-      case '\t':
-      case '\n':
-      case '\r':
-        out += "&#" + std::to_string(static_cast<int>(c)) + ";";
-        break;
       default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          // XML 1.0 has no way to write the other control characters: shown as text.
-          constexpr char kHex[] = "0123456789abcdef";
-          out += std::string("\\x") + kHex[c >> 4] + kHex[c & 0xf];
-        } else {
-          out += c;
-        }
+        out += c;
     }
   }
   return out;

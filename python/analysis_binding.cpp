@@ -99,12 +99,7 @@ RecordChannels channels_of(const py::object& source) {
 
 // An optional number argument; anything but a number or None is a TypeError naming it.
 double or_default(const char* name, const py::object& value, double fallback) {
-  if (value.is_none()) return fallback;
-  if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value) &&
-      !py::hasattr(value, "__float__"))
-    throw py::type_error(std::string("analyze: ") + name + ": expected a number, got " +
-                         py::repr(value).cast<std::string>());
-  return py::float_(value).cast<double>();
+  return value.is_none() ? fallback : number_argument(value, std::string("analyze: ") + name);
 }
 
 }  // namespace

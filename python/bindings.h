@@ -61,6 +61,11 @@ PyResult run_scenario(const std::shared_ptr<const Scenario>& scenario,
 std::vector<PyResult> run_scenarios(const std::vector<std::shared_ptr<const Scenario>>& scenarios,
                                     int jobs);
 
+// `value` as a number (a float, an int, anything with __float__: numpy's); else a TypeError
+// "<what>: expected <expected>, got <repr>" (pybind11's own cast error is a bare RuntimeError).
+double number_argument(const pybind11::handle& value, const std::string& what,
+                       const std::string& expected = "a number");
+
 void bind_errors(pybind11::module_& module);
 void bind_scenario(pybind11::module_& module);
 void bind_result(pybind11::module_& module);

@@ -8,6 +8,15 @@ namespace py = pybind11;
 
 namespace tcpmsim::python {
 
+double number_argument(const py::handle& value, const std::string& what,
+                       const std::string& expected) {
+  if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value) &&
+      !py::hasattr(value, "__float__"))
+    throw py::type_error(what + ": expected " + expected + ", got " +
+                         py::repr(value).cast<std::string>());
+  return py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
+}
+
 // The command line's errors as Python exceptions with the same message: a bad config value
 // (file:line:column or the set's path, the key, what was expected) is a ConfigError; a unit
 // udunits cannot read a UnitError; a parameter outside its range a ParameterError; all three

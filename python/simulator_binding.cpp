@@ -57,11 +57,7 @@ class PySimulator {
   // An input's value as a number; anything else is a TypeError that names the input (pybind11's
   // own cast error is a bare RuntimeError).
   static double input_value(const std::string& name, const py::handle& value) {
-    if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value) &&
-        !py::hasattr(value, "__float__"))
-      throw py::type_error("inputs: " + name + ": expected a number in the input's SI unit, got " +
-                           py::repr(value).cast<std::string>());
-    return py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
+    return number_argument(value, "inputs: " + name, "a number in the input's SI unit");
   }
 
   void set_inputs(const py::object& inputs) {

@@ -29,13 +29,14 @@ double derived_value(const DerivedParameter& derived, const Context& context) {
 // intervals; a structural axis may change one, so a run checks its own before it integrates.
 std::size_t trace_stride(const SweepSpec& spec, const Scenario& scenario) {
   if (spec.traces != TraceStorage::decimated) return 1;
-  const double ratio = spec.trace_interval / scenario.settings.output_interval;
-  if (!(std::round(ratio) >= 1.0) || std::abs(ratio - std::round(ratio)) > 1e-9 * ratio)
+  const std::size_t stride =
+      decimation_stride(spec.trace_interval, scenario.settings.output_interval);
+  if (stride == 0)
     throw std::runtime_error("store.interval (" + number_text(spec.trace_interval) +
                              " s) is no multiple of this run's output interval (" +
                              number_text(scenario.settings.output_interval, 17) +
                              " s): its traces cannot be decimated");
-  return static_cast<std::size_t>(std::llround(ratio));
+  return stride;
 }
 
 RunTrace keep_trace(const SweepScenario& entry, const Scenario& scenario,

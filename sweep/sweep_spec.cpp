@@ -367,8 +367,7 @@ void read_store(const ConfigNode& root, SweepSpec& spec) {
   }
   spec.trace_interval = store->quantity("interval", "s", ValueCheck::positive());
   for (const auto& scenario : spec.scenarios) {
-    const double ratio = spec.trace_interval / scenario.scenario->settings.output_interval;
-    if (std::abs(ratio - std::round(ratio)) > 1e-9 * ratio || std::round(ratio) < 1.0)
+    if (decimation_stride(spec.trace_interval, scenario.scenario->settings.output_interval) == 0)
       store->at("interval")
           .fail("must be a multiple of scenario '" + scenario.name + "''s output interval (" +
                 number_text(scenario.scenario->settings.output_interval, 17) + " s)");
@@ -449,6 +448,12 @@ SweepSpec load_sweep(const std::string& file, const std::vector<std::string>& ov
   root.reject_unknown_keys();
   spec.resolved_yaml = root.resolved_yaml();
   return spec;
+}
+
+std::size_t decimation_stride(double interval, double output_interval) {
+  const double ratio = interval / output_interval;
+  if (!(std::round(ratio) >= 1.0) || std::abs(ratio - std::round(ratio)) > 1e-9 * ratio) return 0;
+  return static_cast<std::size_t>(std::llround(ratio));
 }
 
 }  // namespace tcpmsim::sweep

@@ -76,4 +76,8 @@ void blame_set(const ConfigNode& root, const std::string& scenario, const Config
 SweepSpec load_sweep(const std::string& file, const std::vector<std::string>& overrides,
                      std::shared_ptr<const UnitSystem> units);
 
+// Every how many samples a trace kept every `interval` keeps one of a record made every
+// `output_interval`; 0 when `interval` is no whole multiple of it.
+std::size_t decimation_stride(double interval, double output_interval);
+
 }  // namespace tcpmsim::sweep
